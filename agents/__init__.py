@@ -1,0 +1,7 @@
+"""Robots of InstructMove-MS; importing registers them with ManiSkill."""
+
+from .franka import FRANKA_REST_QPOS, FrankaInstructMove
+
+ROBOTS = ("franka",)
+
+__all__ = ["FRANKA_REST_QPOS", "ROBOTS", "FrankaInstructMove"]

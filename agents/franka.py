@@ -1,0 +1,64 @@
+"""Franka Panda with a DROID-style camera rig (robot uid ``franka``)."""
+
+from __future__ import annotations
+
+import numpy as np
+import sapien
+from mani_skill.agents.base_agent import Keyframe
+from mani_skill.agents.registration import register_agent
+from mani_skill.agents.robots.panda.panda import Panda
+from mani_skill.sensors.camera import CameraConfig
+from mani_skill.utils import sapien_utils
+
+from .cameras import DEFAULT_HEIGHT, DEFAULT_WIDTH, Intrinsics
+
+#: Rest pose of the reference setup: 7 arm joints, then both fingers open (0.04 m).
+FRANKA_REST_QPOS = np.array([0.0, -0.569, 0.0, -1.97, 0.0, 1.5, 0.741, 0.04, 0.04])
+#: Point the external cameras look at: the centre of the reference workspace.
+WORKSPACE_CENTER = (0.40, 0.0, 0.05)
+
+EXT1 = Intrinsics(fx=500.0, fy=500.0)
+EXT2 = Intrinsics(fx=531.9, fy=531.9)
+WRIST = Intrinsics(fx=666.7, fy=666.7)
+WRIST_EYE = (0.124, -0.0018, -0.049)
+
+
+@register_agent()
+class FrankaInstructMove(Panda):
+    """Franka Panda for InstructMove.
+
+    Control modes are ManiSkill's Panda ones; the default ``pd_joint_pos`` is the 8-D policy
+    interface: 7 absolute joint positions (rad) and 1 gripper value, the finger opening in
+    metres (0.04 open, 0.0 closed). ``pd_joint_delta_pos`` and ``pd_ee_delta_pose`` keep the
+    arm controller under the key ``arm``, so ManiSkill's replay converts between them.
+
+    Cameras (published intrinsics at 1280x720; default resolution 160x90):
+    ``ext1_camera`` and ``ext2_camera`` on the base frame looking at the workspace, and
+    ``wrist_camera`` on the hand looking along the fingers.
+    """
+
+    uid = "franka"
+    keyframes = dict(rest=Keyframe(qpos=FRANKA_REST_QPOS.copy(), pose=sapien.Pose()))
+
+    @property
+    def _sensor_configs(self):
+        base = self.robot.links_map["panda_link0"]
+        hand = self.robot.links_map["panda_hand"]
+        configs = []
+        for uid, eye, intr in (
+            ("ext1_camera", (0.404, 0.473, 0.272), EXT1),
+            ("ext2_camera", (0.260, -0.366, 0.248), EXT2),
+        ):
+            pose = sapien_utils.look_at(eye=eye, target=WORKSPACE_CENTER)
+            configs.append(
+                CameraConfig(uid, pose, DEFAULT_WIDTH, DEFAULT_HEIGHT, intr.fov_y, 0.01, 10.0,
+                             mount=base)
+            )
+        # Published mount on the hand; the hand's z axis points through the fingertips and the
+        # camera looks at the grasp region between them.
+        wrist_pose = sapien_utils.look_at(eye=WRIST_EYE, target=(0.0, 0.0, 0.15))
+        configs.append(
+            CameraConfig("wrist_camera", wrist_pose, DEFAULT_WIDTH, DEFAULT_HEIGHT, WRIST.fov_y,
+                         0.01, 10.0, mount=hand)
+        )
+        return configs

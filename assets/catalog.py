@@ -1,0 +1,193 @@
+"""The object catalog: generated instances with exact annotations, and their splits."""
+
+from __future__ import annotations
+
+import hashlib
+import uuid as uuidlib
+from collections.abc import Iterable
+from dataclasses import dataclass, field
+from functools import cache
+from importlib import resources
+
+import numpy as np
+import yaml
+
+from .design import Design
+from .generators import GENERATORS
+from .parts import Part, union_bounds
+from .vocab import material_word
+
+#: Namespace of instance uuids: uuid5(NAMESPACE, "<category>/<index>") never changes.
+UUID_NAMESPACE = uuidlib.UUID("6f1c1c9e-3d52-4c55-9c55-6a1e0b1c7a01")
+DEFAULT_SNAPSHOT = "default"
+INSTANCES_PER_CATEGORY = 10
+#: About one instance in five is held out for the unseen_instance split, one category in
+#: five for unseen_category; both decided by a hash so that growth keeps them stable.
+HELD_OUT_MODULUS = 5
+
+
+@dataclass(frozen=True)
+class TaxonomyEntry:
+    domain: str
+    super_category: str
+
+
+@cache
+def taxonomy() -> dict[str, TaxonomyEntry]:
+    """category -> (domain, super_category), from the shipped taxonomy.yaml."""
+    text = resources.files("instructmove_ms.assets").joinpath("taxonomy.yaml").read_text()
+    tree = yaml.safe_load(text)
+    return {
+        cat: TaxonomyEntry(domain, sup)
+        for domain, supers in tree.items()
+        for sup, cats in supers.items()
+        for cat in cats
+    }
+
+
+def size_bucket(height: float) -> str:
+    return "small" if height < 0.05 else "medium" if height < 0.12 else "large"
+
+
+def _stable_bucket(text: str) -> int:
+    return int.from_bytes(hashlib.sha256(text.encode()).digest()[:4], "little") % HELD_OUT_MODULUS
+
+
+def is_held_out_category(category: str) -> bool:
+    return _stable_bucket(f"category/{category}") == 0
+
+
+@dataclass(frozen=True)
+class Instance:
+    """One generated object with its annotations (exact: derived from its own parts)."""
+
+    uuid: str
+    category: str
+    index: int
+    domain: str
+    super_category: str
+    parts: tuple[Part, ...] = field(repr=False)
+    colors: tuple[str, ...]
+    material: str
+    shape: str
+    nouns: tuple[str, ...]
+    is_graspable: bool
+    is_container: bool
+
+    @property
+    def bounds(self) -> tuple[np.ndarray, np.ndarray]:
+        return union_bounds(list(self.parts))
+
+    @property
+    def dims(self) -> tuple[float, float, float]:
+        lo, hi = self.bounds
+        return tuple(float(v) for v in hi - lo)
+
+    @property
+    def height(self) -> float:
+        return self.dims[2]
+
+    @property
+    def size(self) -> str:
+        return size_bucket(self.height)
+
+    @property
+    def mass(self) -> float:
+        return float(sum(p.mass for p in self.parts))
+
+    @property
+    def held_out(self) -> bool:
+        """True for the instances reserved for the unseen_instance split."""
+        return _stable_bucket(f"instance/{self.uuid}") == 0
+
+    def annotation(self) -> dict:
+        """The instance's annotation record, as stored in catalog exports."""
+        return {
+            "uuid": self.uuid,
+            "category": self.category,
+            "super_category": self.super_category,
+            "domain": self.domain,
+            "colors": list(self.colors),
+            "material": self.material,
+            "shape": self.shape,
+            "dims": [round(v, 5) for v in self.dims],
+            "height": round(self.height, 5),
+            "size": self.size,
+            "mass": round(self.mass, 5),
+            "is_graspable": self.is_graspable,
+            "is_container": self.is_container,
+            "held_out": self.held_out,
+        }
+
+
+def instance_uuid(category: str, index: int) -> str:
+    return str(uuidlib.uuid5(UUID_NAMESPACE, f"{category}/{index}"))
+
+
+def generate_instance(category: str, index: int) -> Instance:
+    """Build instance ``index`` of ``category``; the same arguments give the same object."""
+    if category not in GENERATORS:
+        raise KeyError(f"no generator for category {category!r}; known: {sorted(GENERATORS)}")
+    gen = GENERATORS[category]
+    entry = taxonomy().get(category)
+    if entry is None:
+        raise KeyError(f"category {category!r} is not in the taxonomy")
+    uid = instance_uuid(category, index)
+    design = Design(np.random.default_rng(uuidlib.UUID(uid).int % 2**63))
+    traits = gen.build(design)
+    if not 1 <= len(traits.colors) <= 2:
+        raise ValueError(f"{category}: an instance names 1 or 2 colours, got {traits.colors}")
+    return Instance(
+        uuid=uid,
+        category=category,
+        index=index,
+        domain=entry.domain,
+        super_category=entry.super_category,
+        parts=tuple(design.finish()),
+        colors=tuple(dict.fromkeys(traits.colors)),
+        material=material_word(traits.material),
+        shape=traits.shape,
+        nouns=gen.synonyms,
+        is_graspable=gen.graspable,
+        is_container=gen.container,
+    )
+
+
+class Catalog:
+    """A frozen set of instances (a snapshot) with look-ups by uuid and category."""
+
+    def __init__(self, name: str, instances: Iterable[Instance]) -> None:
+        self.name = name
+        self.instances: tuple[Instance, ...] = tuple(instances)
+        self._by_uuid = {inst.uuid: inst for inst in self.instances}
+        self._by_category: dict[str, list[Instance]] = {}
+        for inst in self.instances:
+            self._by_category.setdefault(inst.category, []).append(inst)
+
+    def __len__(self) -> int:
+        return len(self.instances)
+
+    def __getitem__(self, uuid: str) -> Instance:
+        try:
+            return self._by_uuid[uuid]
+        except KeyError:
+            raise KeyError(f"uuid {uuid!r} is not in snapshot {self.name!r}") from None
+
+    @property
+    def categories(self) -> list[str]:
+        return sorted(self._by_category)
+
+    def of_category(self, category: str) -> list[Instance]:
+        return list(self._by_category.get(category, []))
+
+
+@cache
+def load_snapshot(name: str = DEFAULT_SNAPSHOT) -> Catalog:
+    """The embedded snapshot: every registered category, ``INSTANCES_PER_CATEGORY`` each."""
+    if name != DEFAULT_SNAPSHOT:
+        raise ValueError(f"unknown snapshot {name!r}; allowed: [{DEFAULT_SNAPSHOT!r}]")
+    return Catalog(
+        name,
+        (generate_instance(cat, i) for cat in sorted(GENERATORS)
+         for i in range(INSTANCES_PER_CATEGORY)),
+    )

@@ -1,0 +1,106 @@
+"""Fruits, ingredients and beverages."""
+
+from __future__ import annotations
+
+import math
+
+from ..design import Design, Traits
+from ..parts import axis_angle_quat
+from .registry import generator
+
+
+def _stem(d: Design, top: float, length: float, leaf: bool) -> None:
+    d.upright("stem", 0.0025, length, top - 0.004, "organic", "brown")
+    if leaf:
+        d.box("leaf", (0.012, 0.006, 0.0012), (0.01, 0.0, top + 0.002), "organic", "green",
+              yaw=d.uniform(0, math.pi))
+
+
+@generator("apple")
+def apple(d: Design) -> Traits:
+    color = d.choice(["red", "red", "green", "yellow"])
+    r = d.uniform(0.03, 0.037)
+    d.ellipsoid("body", (r, r, r * d.uniform(0.82, 0.92)), (0, 0, r), "organic", color)
+    _stem(d, r * 1.85, d.uniform(0.012, 0.02), leaf=d.rng.random() < 0.6)
+    return Traits((color,), "organic", "sphere")
+
+
+@generator("lemon")
+def lemon(d: Design) -> Traits:
+    color = d.choice(["yellow", "yellow", "green"])
+    a, b = d.uniform(0.035, 0.045), d.uniform(0.026, 0.031)
+    d.ellipsoid("body", (a, b, b), (0, 0, b), "organic", color)
+    for sign, name in ((1, "tip"), (-1, "stalk_end")):
+        d.sphere(name, 0.006, (sign * (a - 0.002), 0, b), "organic", color)
+    return Traits((color,), "organic", "ellipsoid")
+
+
+@generator("banana")
+def banana(d: Design) -> Traits:
+    color = d.choice(["yellow", "yellow", "green"])
+    radius = d.uniform(0.015, 0.019)
+    arc = d.uniform(0.09, 0.12)  # radius of the curve
+    segments = 5
+    sweep = d.uniform(0.9, 1.2)
+    seg_len = arc * sweep / segments
+    for k in range(segments):
+        a = -sweep / 2 + sweep * (k + 0.5) / segments
+        center = (arc * math.sin(a), arc * (1 - math.cos(a)), radius)
+        r = radius * (0.75 if k in (0, segments - 1) else 1.0)
+        d.add(f"segment_{k}", "capsule", (r, seg_len / 2), center, "organic", color,
+              quat=axis_angle_quat((0, 0, 1), a))
+    tip = (arc * math.sin(sweep / 2 + 0.05), arc * (1 - math.cos(sweep / 2 + 0.05)), radius)
+    d.sphere("tip", radius * 0.45, tip, "organic", "brown")
+    return Traits((color,), "organic", "elongated")
+
+
+@generator("tomato")
+def tomato(d: Design) -> Traits:
+    color = d.choice(["red", "red", "orange"])
+    r = d.uniform(0.028, 0.04)
+    h = r * d.uniform(0.7, 0.82)
+    d.ellipsoid("body", (r, r, h), (0, 0, h), "organic", color)
+    for k in range(5):
+        d.box(f"sepal_{k}", (0.011, 0.0025, 0.001), (0, 0, 2 * h), "organic", "green",
+              yaw=k * math.pi / 5)
+    d.upright("stem", 0.002, 0.008, 2 * h, "organic", "green")
+    return Traits((color,), "organic", "sphere")
+
+
+@generator("egg")
+def egg(d: Design) -> Traits:
+    color = d.choice(["white", "beige", "brown"])
+    r = d.uniform(0.02, 0.023)
+    d.ellipsoid("shell", (r * 1.3, r, r), (0, 0, r), "organic", color)
+    return Traits((color,), "organic", "ellipsoid")
+
+
+@generator("canned_coke", synonyms=("can of coke", "soda can", "coke can", "can"))
+def canned_coke(d: Design) -> Traits:
+    color = d.choice(["red", "red", "silver", "black", "blue"])
+    r = d.uniform(0.031, 0.034)
+    h = d.uniform(0.105, 0.125)
+    d.upright("body", r, h - 0.012, 0.006, "aluminium", color, solid_fraction=0.38)
+    d.upright("bottom_rim", r * 0.9, 0.006, 0.0, "aluminium", "silver")
+    d.upright("top_rim", r * 0.92, 0.006, h - 0.006, "aluminium", "silver")
+    d.box("tab", (0.01, 0.005, 0.0008), (0.008, 0, h + 0.0008), "aluminium", "silver")
+    colors = (color,) if color == "silver" else (color, "silver")
+    return Traits(colors, "metal", "cylinder")
+
+
+@generator("beverage_bottle", synonyms=("bottle", "drink bottle", "beverage bottle"))
+def beverage_bottle(d: Design) -> Traits:
+    color = d.choice(["transparent", "green", "blue", "transparent"])
+    cap = d.choice(["white", "blue", "red", "black"])
+    r = d.uniform(0.028, 0.034)
+    h = d.uniform(0.15, 0.2)
+    body_h = h * 0.62
+    d.upright("body", r, body_h, 0.0, "plastic", color, solid_fraction=0.95)
+    d.ellipsoid("shoulder", (r, r, h * 0.14), (0, 0, body_h), "plastic", color,
+                solid_fraction=0.95)
+    d.upright("label", r + 0.0012, body_h * 0.4, body_h * 0.3, "paper",
+              d.choice(["red", "orange", "white", "green"]))
+    neck_z = body_h + h * 0.1
+    d.upright("neck", 0.012, h - neck_z - 0.014, neck_z, "plastic", color)
+    d.upright("cap", 0.015, 0.016, h - 0.016, "plastic", cap)
+    return Traits((color, cap), "plastic", "cylinder")

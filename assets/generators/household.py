@@ -1,0 +1,59 @@
+"""Bathroom supplies and repair tools."""
+
+from __future__ import annotations
+
+from ..design import Design, Traits
+from .desktop import BRIGHT
+from .registry import generator
+
+
+@generator("sponge", synonyms=("sponge", "kitchen sponge", "scrub sponge"))
+def sponge(d: Design) -> Traits:
+    color = d.choice(["yellow", "yellow", "pink", "blue", "orange"])
+    pad = d.choice(["green", "green", "blue", "gray"])
+    lx, ly = d.uniform(0.08, 0.1), d.uniform(0.05, 0.065)
+    foam, scour = d.uniform(0.02, 0.03), 0.006
+    d.box("foam", (lx / 2, ly / 2, foam / 2), (0, 0, foam / 2), "foam", color)
+    d.box("scourer", (lx / 2, ly / 2, scour / 2), (0, 0, foam + scour / 2), "fabric", pad)
+    return Traits((color, pad), "fabric", "cuboid")
+
+
+@generator("toothbrush")
+def toothbrush(d: Design) -> Traits:
+    color = d.choice(BRIGHT + ["white"])
+    length = d.uniform(0.17, 0.19)
+    head = 0.028
+    d.box("handle", ((length - head) / 2, 0.007, 0.006), (-head / 2, 0, 0.006), "plastic", color)
+    d.box("head", (head / 2, 0.0055, 0.004), ((length - head) / 2, 0, 0.004), "plastic", color)
+    d.box("bristles", (head / 2 - 0.002, 0.005, 0.006), ((length - head) / 2, 0, 0.014),
+          "plastic", "white")
+    return Traits((color,), "plastic", "elongated")
+
+
+@generator("screwdriver")
+def screwdriver(d: Design) -> Traits:
+    color = d.choice(["red", "yellow", "blue", "black", "orange", "green"])
+    handle_len = d.uniform(0.085, 0.11)
+    shaft_len = d.uniform(0.07, 0.12)
+    r = d.uniform(0.013, 0.017)
+    x0 = -(handle_len + shaft_len) / 2
+    d.rod("handle", r, handle_len, (x0 + handle_len / 2, 0, r), "plastic", color, capsule=True)
+    d.rod("ferrule", 0.006, 0.012, (x0 + handle_len + 0.004, 0, r), "metal", "silver")
+    d.rod("shaft", 0.0032, shaft_len, (x0 + handle_len + shaft_len / 2, 0, r), "metal", "silver")
+    d.box("tip", (0.004, 0.0035, 0.0008), (x0 + handle_len + shaft_len, 0, r), "metal", "silver")
+    return Traits((color, "silver"), "plastic", "elongated")
+
+
+@generator("wrench", synonyms=("wrench", "spanner"))
+def wrench(d: Design) -> Traits:
+    color = d.choice(["silver", "silver", "gray", "black"])
+    length = d.uniform(0.14, 0.2)
+    w = d.uniform(0.014, 0.018)
+    t = 0.006
+    d.box("handle", (length / 2 - 0.02, w / 2, t / 2), (0, 0, t / 2), "metal", color)
+    head_x = length / 2 - 0.014
+    for k, sign in enumerate((-1, 1)):
+        d.box(f"jaw_{k}", (0.014, 0.0055, t / 2), (head_x, sign * (w / 2 + 0.006), t / 2), "metal",
+              color)
+    d.box("ring", (0.014, w * 0.9, t / 2), (-head_x, 0, t / 2), "metal", color)
+    return Traits((color,), "metal", "flat")

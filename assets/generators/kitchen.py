@@ -1,0 +1,103 @@
+"""Tableware, ware and utensils."""
+
+from __future__ import annotations
+
+import math
+
+from ..design import Design, Traits
+from .registry import generator
+
+CERAMIC_COLORS = ["white", "white", "blue", "red", "green", "yellow", "black", "beige", "pink"]
+
+
+@generator("mug", synonyms=("mug", "cup", "coffee mug"), container=True)
+def mug(d: Design) -> Traits:
+    color = d.choice(CERAMIC_COLORS)
+    r = d.uniform(0.03, 0.038)
+    h = d.uniform(0.08, 0.105)
+    t = 0.005
+    d.upright("bottom", r + t, 0.008, 0.0, "ceramic", color)
+    d.wall("wall", r, t, h - 0.008, 0.008, "ceramic", color, segments=14)
+    # the handle: two arms and a grip, on the +x side
+    reach = d.uniform(0.022, 0.03)
+    grip_h = h * d.uniform(0.5, 0.65)
+    z_mid = h * 0.52
+    x_out = r + t + reach
+    for name, z in (("handle_top", z_mid + grip_h / 2), ("handle_bottom", z_mid - grip_h / 2)):
+        d.box(name, (reach / 2 + 0.002, 0.006, 0.004), (r + t + reach / 2, 0, z), "ceramic", color)
+    d.box("handle_grip", (0.004, 0.006, grip_h / 2 + 0.004), (x_out, 0, z_mid), "ceramic", color)
+    return Traits((color,), "ceramic", "cylinder")
+
+
+@generator("bowl", container=True)
+def bowl(d: Design) -> Traits:
+    color = d.choice(CERAMIC_COLORS)
+    material = d.choice(["ceramic", "ceramic", "plastic", "wood"])
+    r_base = d.uniform(0.035, 0.045)
+    h = d.uniform(0.045, 0.065)
+    flare = d.uniform(0.55, 0.75)
+    d.upright("foot", r_base * 0.8, 0.006, 0.0, material, color)
+    d.upright("base", r_base + 0.004, 0.006, 0.006, material, color)
+    d.wall("wall", r_base, 0.005, h - 0.012, 0.012, material, color, segments=18, flare=flare)
+    return Traits((color,), material, "hemisphere")
+
+
+@generator("spice_jar", synonyms=("spice jar", "jar", "seasoning jar"))
+def spice_jar(d: Design) -> Traits:
+    lid = d.choice(["red", "black", "silver", "white", "green"])
+    content = d.choice(["red", "brown", "green", "orange", "beige"])
+    r = d.uniform(0.02, 0.026)
+    h = d.uniform(0.08, 0.1)
+    d.upright("jar", r, h - 0.018, 0.0, "glass", "transparent", solid_fraction=0.35)
+    d.upright("spice", r - 0.002, (h - 0.02) * 0.6, 0.002, "organic", content, visual_only=True)
+    d.upright("lid", r + 0.0015, 0.018, h - 0.018, "plastic", lid)
+    return Traits(("transparent", lid), "glass", "cylinder")
+
+
+@generator("spoon")
+def spoon(d: Design) -> Traits:
+    color = d.choice(["silver", "silver", "white", "black", "blue"])
+    material = "metal" if color == "silver" else "plastic"
+    length = d.uniform(0.15, 0.19)
+    bowl_len = length * 0.3
+    handle_len = length - bowl_len
+    x0 = -length / 2
+    d.box("handle", (handle_len / 2, 0.006, 0.0018), (x0 + handle_len / 2, 0, 0.006), material,
+          color)
+    d.ellipsoid("bowl", (bowl_len / 2, 0.018, 0.006), (x0 + handle_len + bowl_len / 2 - 0.004,
+                0, 0.006), material, color)
+    return Traits((color,), "metal" if material == "metal" else "plastic", "elongated")
+
+
+@generator("fork")
+def fork(d: Design) -> Traits:
+    color = d.choice(["silver", "silver", "white", "black"])
+    material = "metal" if color == "silver" else "plastic"
+    length = d.uniform(0.16, 0.2)
+    head = length * 0.3
+    handle_len = length - head
+    x0 = -length / 2
+    d.box("handle", (handle_len / 2, 0.006, 0.0018), (x0 + handle_len / 2, 0, 0.003), material,
+          color)
+    d.box("neck", (0.008, 0.011, 0.0018), (x0 + handle_len + 0.008, 0, 0.003), material, color)
+    tine_len = head - 0.016
+    for k, y in enumerate((-0.0085, -0.003, 0.003, 0.0085)):
+        d.box(f"tine_{k}", (tine_len / 2, 0.0014, 0.0016),
+              (x0 + handle_len + 0.016 + tine_len / 2, y, 0.003), material, color)
+    return Traits((color,), "metal" if material == "metal" else "plastic", "elongated")
+
+
+@generator("plate", synonyms=("plate", "dish"), graspable=False, container=True)
+def plate(d: Design) -> Traits:
+    color = d.choice(CERAMIC_COLORS)
+    r = d.uniform(0.075, 0.1)
+    d.upright("foot", r * 0.6, 0.004, 0.0, "ceramic", color)
+    d.upright("floor", r * 0.7, 0.004, 0.004, "ceramic", color)
+    segments = 20
+    rim_w = r * 0.3
+    for k in range(segments):
+        a = 2 * math.pi * k / segments
+        c = r * 0.7 + rim_w / 2
+        d.box(f"rim_{k}", (rim_w / 2, r * math.tan(math.pi / segments) * 0.95, 0.002),
+              (c * math.cos(a), c * math.sin(a), 0.011), "ceramic", color, yaw=a)
+    return Traits((color,), "ceramic", "disk")

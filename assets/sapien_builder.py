@@ -1,0 +1,74 @@
+"""Turn catalog instances into SAPIEN actors (visual and collision from the same parts)."""
+
+from __future__ import annotations
+
+from functools import cache
+from importlib import resources
+
+import sapien
+import sapien.physx as physx
+import sapien.render as render
+
+from .catalog import Instance
+from .parts import Part
+from .vocab import MATERIALS
+
+
+@cache
+def _unit_sphere_mesh() -> str:
+    return str(resources.files("instructmove_ms.assets").joinpath("meshes/icosphere.obj"))
+
+
+@cache
+def physical_material(name: str) -> physx.PhysxMaterial:
+    mu = MATERIALS[name].friction
+    return physx.PhysxMaterial(static_friction=mu, dynamic_friction=0.9 * mu, restitution=0.0)
+
+
+def render_material(part: Part) -> render.RenderMaterial:
+    m = MATERIALS[part.material]
+    alpha = 1.0 - 0.6 * m.transmission
+    return render.RenderMaterial(
+        base_color=[*part.rgb, alpha],
+        metallic=m.metallic,
+        roughness=m.roughness,
+        specular=0.5,
+    )
+
+
+def add_part(builder: sapien.ActorBuilder, part: Part) -> None:
+    """Add one part's visual and (unless decorative) collision shape to ``builder``."""
+    pose = sapien.Pose(p=list(part.pos), q=list(part.quat))
+    mat = render_material(part)
+    s = part.size
+    if part.shape == "box":
+        builder.add_box_visual(pose, half_size=s, material=mat)
+    elif part.shape == "sphere":
+        builder.add_sphere_visual(pose, radius=s[0], material=mat)
+    elif part.shape == "cylinder":
+        builder.add_cylinder_visual(pose, radius=s[0], half_length=s[1], material=mat)
+    elif part.shape == "capsule":
+        builder.add_capsule_visual(pose, radius=s[0], half_length=s[1], material=mat)
+    else:
+        builder.add_visual_from_file(_unit_sphere_mesh(), pose, scale=s, material=mat)
+    if part.visual_only:
+        return
+    kw = dict(material=physical_material(part.material), density=part.density)
+    if part.shape == "box":
+        builder.add_box_collision(pose, half_size=s, **kw)
+    elif part.shape == "sphere":
+        builder.add_sphere_collision(pose, radius=s[0], **kw)
+    elif part.shape == "cylinder":
+        builder.add_cylinder_collision(pose, radius=s[0], half_length=s[1], **kw)
+    elif part.shape == "capsule":
+        builder.add_capsule_collision(pose, radius=s[0], half_length=s[1], **kw)
+    else:
+        builder.add_convex_collision_from_file(_unit_sphere_mesh(), pose, scale=s, **kw)
+
+
+def actor_builder(scene, instance: Instance) -> sapien.ActorBuilder:
+    """A dynamic-actor builder holding every part of ``instance``."""
+    builder = scene.create_actor_builder()
+    for part in instance.parts:
+        add_part(builder, part)
+    return builder

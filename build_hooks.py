@@ -1,0 +1,24 @@
+"""Build step that ships ``instructmove_ms.pth`` at the root of site-packages.
+
+The .pth line runs ``instructmove_ms_autoload.install()`` at interpreter start-up so that
+ManiSkill's own commands see our env ids. Works for ``pip install .`` (written into build_lib)
+and ``pip install -e .`` (written into the editable wheel's root).
+"""
+
+from pathlib import Path
+
+from setuptools.command.build_py import build_py
+
+PTH_NAME = "instructmove_ms.pth"
+PTH_LINE = "import instructmove_ms_autoload; instructmove_ms_autoload.install()\n"
+
+
+class BuildPyWithPth(build_py):
+    def run(self) -> None:
+        super().run()
+        if getattr(self, "editable_mode", False):
+            target = Path(self.get_finalized_command("install").install_lib)
+        else:
+            target = Path(self.build_lib)
+        target.mkdir(parents=True, exist_ok=True)
+        (target / PTH_NAME).write_text(PTH_LINE)

@@ -1,0 +1,76 @@
+"""The episode specification: the single source of truth for one episode.
+
+It holds the paper's tuple e = (s0, O, D, l, g*, G): the initial state (objects with
+uuids and poses, robot joints), the manipulable objects, the destinations, the instruction,
+the instruction-consistent goal (``target``) and the candidate goals (``candidates``).
+Scene building, the instruction, scoring and later demo generation all read it.
+"""
+
+from __future__ import annotations
+
+import json
+from dataclasses import asdict, dataclass, field
+
+CONDITIONS = ("normal", "alternative_target", "generic", "empty", "absent_object")
+SPEC_VERSION = 1
+
+
+@dataclass(frozen=True)
+class ObjectSpec:
+    """One object of the scene: which catalog instance, where, and its role."""
+
+    uuid: str
+    category: str
+    role: str  # "target" | "distractor" | "reference" | "receptacle"
+    pose: tuple[float, ...]  # world frame: x, y, z, qw, qx, qy, qz
+
+
+@dataclass(frozen=True)
+class EpisodeSpec:
+    family: str
+    robot: str
+    snapshot: str
+    split: str
+    seed: int
+    instruction: str
+    objects: tuple[ObjectSpec, ...]
+    target: int  # index into ``objects`` of the instruction-consistent goal; -1 if none
+    candidates: tuple[int, ...]  # indices of the plausible candidate goals
+    robot_qpos: tuple[float, ...]
+    destinations: tuple[int, ...] = ()
+    condition: str = "normal"
+    version: int = field(default=SPEC_VERSION)
+
+    def __post_init__(self) -> None:
+        if self.target >= len(self.objects):
+            raise ValueError(f"target index {self.target} outside {len(self.objects)} objects")
+        if self.condition == "normal" and self.target not in self.candidates:
+            raise ValueError("the target must be one of the candidate goals")
+
+    def to_dict(self) -> dict:
+        return asdict(self)
+
+    def to_json(self) -> str:
+        return json.dumps(self.to_dict(), sort_keys=True)
+
+    @classmethod
+    def from_dict(cls, data: dict) -> EpisodeSpec:
+        if data.get("version", SPEC_VERSION) != SPEC_VERSION:
+            raise ValueError(f"episode spec version {data.get('version')!r}; "
+                             f"this release reads version {SPEC_VERSION}")
+        fields = dict(data)
+        fields["objects"] = tuple(
+            ObjectSpec(o["uuid"], o["category"], o["role"], tuple(o["pose"]))
+            for o in data["objects"]
+        )
+        for key in ("candidates", "robot_qpos", "destinations"):
+            fields[key] = tuple(data.get(key, ()))
+        return cls(**fields)
+
+    @classmethod
+    def from_json(cls, text: str) -> EpisodeSpec:
+        return cls.from_dict(json.loads(text))
+
+    @property
+    def target_object(self) -> ObjectSpec | None:
+        return self.objects[self.target] if self.target >= 0 else None

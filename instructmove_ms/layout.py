@@ -1,0 +1,102 @@
+"""Random non-overlapping table layouts of oriented rectangular footprints."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+
+class LayoutError(RuntimeError):
+    """No layout satisfies the constraints within the search budget."""
+
+
+@dataclass(frozen=True)
+class Workspace:
+    """Where object centres may go, in the robot's base frame (x forward, y left)."""
+
+    x: tuple[float, float] = (0.25, 0.55)
+    y: tuple[float, float] = (-0.35, 0.35)
+
+
+@dataclass(frozen=True)
+class Placement:
+    x: float
+    y: float
+    yaw: float
+
+
+def corners(half: tuple[float, float], p: Placement) -> np.ndarray:
+    """The four footprint corners (4, 2) of a rectangle with ``half`` extents at ``p``."""
+    c, s = math.cos(p.yaw), math.sin(p.yaw)
+    local = np.array([[1, 1], [-1, 1], [-1, -1], [1, -1]], dtype=float) * np.asarray(half)
+    return local @ np.array([[c, s], [-s, c]]) + np.array([p.x, p.y])
+
+
+def _separated(a: np.ndarray, b: np.ndarray) -> bool:
+    """Separating-axis test for two convex quads."""
+    for poly in (a, b):
+        for k in range(4):
+            edge = poly[(k + 1) % 4] - poly[k]
+            axis = np.array([-edge[1], edge[0]])
+            pa, pb = a @ axis, b @ axis
+            if pa.max() < pb.min() or pb.max() < pa.min():
+                return True
+    return False
+
+
+def _point_segment(p: np.ndarray, a: np.ndarray, b: np.ndarray) -> float:
+    ab = b - a
+    t = np.clip(np.dot(p - a, ab) / np.dot(ab, ab), 0.0, 1.0)
+    return float(np.linalg.norm(p - (a + t * ab)))
+
+
+def gap(a: np.ndarray, b: np.ndarray) -> float:
+    """Distance between two convex quads (0 when they overlap)."""
+    if not _separated(a, b):
+        return 0.0
+    return min(
+        _point_segment(p, q[k], q[(k + 1) % 4])
+        for p_set, q in ((a, b), (b, a))
+        for p in p_set
+        for k in range(4)
+    )
+
+
+def sample_layout(
+    rng: np.random.Generator,
+    halves: list[tuple[float, float]],
+    workspace: Workspace,
+    clearance: float,
+    tries_per_object: int = 256,
+    restarts: int = 64,
+) -> list[Placement]:
+    """Place every footprint with at least ``clearance`` between any two, in order given.
+
+    Larger footprints go first internally; the result follows the input order.
+    """
+    order = sorted(range(len(halves)), key=lambda i: -halves[i][0] * halves[i][1])
+    pad = clearance / 2
+    padded = [(h[0] + pad, h[1] + pad) for h in halves]
+    for _ in range(restarts):
+        placed: dict[int, tuple[Placement, np.ndarray]] = {}
+        for i in order:
+            for _ in range(tries_per_object):
+                p = Placement(
+                    float(rng.uniform(*workspace.x)),
+                    float(rng.uniform(*workspace.y)),
+                    float(rng.uniform(-math.pi, math.pi)),
+                )
+                quad = corners(padded[i], p)
+                if all(_separated(quad, other) for _, other in placed.values()):
+                    placed[i] = (p, quad)
+                    break
+            else:
+                break
+        if len(placed) == len(halves):
+            return [placed[i][0] for i in range(len(halves))]
+    raise LayoutError(
+        f"could not place {len(halves)} objects with {clearance} m clearance in "
+        f"x {workspace.x}, y {workspace.y} after {restarts} restarts"
+    )

@@ -1,0 +1,94 @@
+#!/usr/bin/env bash
+# Make a Debian/Ubuntu machine ready for InstructMove-MS, then install the package.
+#
+#   scripts/setup.sh          # runtime install (editable)
+#   scripts/setup.sh --dev    # plus test and lint tools
+#
+# Steps, each skipped when already satisfied (a second run changes nothing):
+#   1. PyTorch (CPU build pinned first, so that no CUDA wheels are pulled on a CPU machine);
+#   2. the package itself (pip install -e .), re-run only when the packaging files change;
+#   3. a Vulkan driver SAPIEN accepts: Mesa lavapipe >= 24.3 when no GPU driver renders.
+# Environment: PYTHON (interpreter, default python3), INSTRUCTMOVE_TORCH (torch version).
+set -euo pipefail
+
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+cd "$root"
+py="${PYTHON:-python3}"
+torch_version="${INSTRUCTMOVE_TORCH:-2.13.0}"
+extras=""
+for arg in "$@"; do
+  case "$arg" in
+    --dev) extras="[dev]" ;;
+    *) echo "setup.sh: unknown option '$arg' (allowed: --dev)" >&2; exit 2 ;;
+  esac
+done
+
+log() { printf '[setup] %s\n' "$*"; }
+as_root() { if [ "$(id -u)" = 0 ]; then "$@"; else sudo "$@"; fi; }
+pip_install() { "$py" -m pip install --quiet --disable-pip-version-check "$@"; }
+
+# 1. PyTorch --------------------------------------------------------------------------
+if "$py" -c "import torch" >/dev/null 2>&1; then
+  log "torch $("$py" -c 'import torch; print(torch.__version__)') already installed"
+else
+  log "installing torch==$torch_version"
+  pip_install "torch==$torch_version"
+fi
+
+# 2. The package ----------------------------------------------------------------------
+stamp_dir="$root/.cache"
+stamp="$stamp_dir/setup-${extras:-[runtime]}.stamp"
+want="$(cat pyproject.toml setup.cfg | sha256sum | cut -d' ' -f1) $("$py" -c 'import sys; print(sys.prefix)')"
+if [ -f "$stamp" ] && [ "$(cat "$stamp")" = "$want" ] && "$py" -c "import instructmove_ms" >/dev/null 2>&1; then
+  log "instructmove-ms already installed (packaging unchanged)"
+else
+  log "installing instructmove-ms$extras (editable)"
+  pip_install -e ".$extras"
+  mkdir -p "$stamp_dir"
+  printf '%s' "$want" > "$stamp"
+fi
+
+# 3. Vulkan for SAPIEN ----------------------------------------------------------------
+renders() { "$py" -c "import sapien.render as r; r.get_device_summary()" >/dev/null 2>&1; }
+
+add_debian_backports() {
+  # Derive the backports entry from the machine's own Debian source (no host is hard-coded).
+  local codename="$1" src="/etc/apt/sources.list.d/debian.sources"
+  local out="/etc/apt/sources.list.d/instructmove-backports.sources"
+  [ -f "$out" ] && return 0
+  if [ -f "$src" ]; then
+    awk -v cn="$codename" -v RS= -v ORS="\n\n" '
+      $0 ~ ("Suites:[^\n]*" cn "([ \n]|$)") && $0 !~ /security/ && !done {
+        gsub(/Suites:[^\n]*/, "Suites: " cn "-backports"); print; done=1 }' "$src" | as_root tee "$out" >/dev/null
+  elif [ -f /etc/apt/sources.list ]; then
+    grep -E "^deb [^ ]+ $codename main" /etc/apt/sources.list | head -n 1 \
+      | sed -E "s/ $codename main.*/ $codename-backports main/" \
+      | as_root tee /etc/apt/sources.list.d/instructmove-backports.list >/dev/null
+  fi
+  if [ ! -s "$out" ] && [ ! -s /etc/apt/sources.list.d/instructmove-backports.list ]; then
+    echo "setup.sh: could not derive a $codename-backports source from the apt sources" >&2
+    exit 1
+  fi
+}
+
+if renders; then
+  log "SAPIEN finds a rendering device"
+else
+  . /etc/os-release
+  log "no rendering device: installing Mesa's Vulkan drivers (lavapipe)"
+  export DEBIAN_FRONTEND=noninteractive
+  if [ "${ID:-}" = debian ] && [ "${VERSION_CODENAME:-}" = bookworm ]; then
+    add_debian_backports bookworm
+    as_root apt-get update -qq
+    as_root apt-get install -y -qq -t bookworm-backports mesa-vulkan-drivers libvulkan1 >/dev/null
+  else
+    as_root apt-get update -qq
+    as_root apt-get install -y -qq mesa-vulkan-drivers libvulkan1 >/dev/null
+  fi
+  if ! renders; then
+    echo "setup.sh: SAPIEN still finds no rendering device; it needs Mesa >= 24.3 or a GPU driver." >&2
+    exit 1
+  fi
+  log "SAPIEN renders with: $("$py" -c 'import sapien.render as r; print(r.get_device_summary())' 2>/dev/null | head -n 3)"
+fi
+log "ready"

@@ -1,0 +1,39 @@
+"""Declarative task specifications, read by the shared engine in ``tasks.base``."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from instructmove_ms.layout import Workspace
+
+
+@dataclass(frozen=True)
+class Thresholds:
+    """Stage thresholds, in metres.
+
+    ``reach``: the TCP is within this distance of the object's box. Layouts keep at least
+    ``clearance`` between footprints and ``reach`` is below half of it, so one TCP position
+    can never be within ``reach`` of two objects of a fresh layout: the reached object is
+    unambiguous (the reference's 0.2 m from an object origin spans several neighbours).
+    ``lift``: the object, grasped by the robot, is this much above its initial height.
+    """
+
+    reach: float = 0.02
+    lift: float = 0.03
+
+
+@dataclass(frozen=True)
+class TaskSpec:
+    """What defines a task family: composition, constraints, language and scoring."""
+
+    env_id: str
+    family: str
+    default_robot: str
+    supported_robots: tuple[str, ...]
+    composition: dict[str, int]  # role -> default count
+    count_limits: dict[str, tuple[int, int]]  # role -> allowed (min, max)
+    templates: tuple[str, ...]
+    max_episode_steps: int = 300
+    clearance: float = 0.05
+    workspace: Workspace = field(default_factory=Workspace)
+    thresholds: Thresholds = field(default_factory=Thresholds)
