@@ -51,14 +51,23 @@ class FrankaInstructMove(Panda):
         ):
             pose = sapien_utils.look_at(eye=eye, target=WORKSPACE_CENTER)
             configs.append(
-                CameraConfig(uid, pose, DEFAULT_WIDTH, DEFAULT_HEIGHT, intr.fov_y, 0.01, 10.0,
-                             mount=base)
+                CameraConfig(
+                    uid, pose, DEFAULT_WIDTH, DEFAULT_HEIGHT, intr.fov_y, 0.01, 10.0, mount=base
+                )
             )
         # Published mount on the hand; the hand's z axis points through the fingertips and the
         # camera looks at the grasp region between them.
         wrist_pose = sapien_utils.look_at(eye=WRIST_EYE, target=(0.0, 0.0, 0.15))
         configs.append(
-            CameraConfig("wrist_camera", wrist_pose, DEFAULT_WIDTH, DEFAULT_HEIGHT, WRIST.fov_y,
-                         0.01, 10.0, mount=hand)
+            CameraConfig(
+                "wrist_camera",
+                wrist_pose,
+                DEFAULT_WIDTH,
+                DEFAULT_HEIGHT,
+                WRIST.fov_y,
+                0.01,
+                10.0,
+                mount=hand,
+            )
         )
         return configs

@@ -188,6 +188,9 @@ def load_snapshot(name: str = DEFAULT_SNAPSHOT) -> Catalog:
         raise ValueError(f"unknown snapshot {name!r}; allowed: [{DEFAULT_SNAPSHOT!r}]")
     return Catalog(
         name,
-        (generate_instance(cat, i) for cat in sorted(GENERATORS)
-         for i in range(INSTANCES_PER_CATEGORY)),
+        (
+            generate_instance(cat, i)
+            for cat in sorted(GENERATORS)
+            for i in range(INSTANCES_PER_CATEGORY)
+        ),
     )

@@ -44,8 +44,18 @@ class Design:
         return self._shades[color]
 
     # primitives ----------------------------------------------------------------------
-    def add(self, name, shape, size, pos, material, color, quat=IDENTITY, solid_fraction=1.0,
-            visual_only=False):
+    def add(
+        self,
+        name,
+        shape,
+        size,
+        pos,
+        material,
+        color,
+        quat=IDENTITY,
+        solid_fraction=1.0,
+        visual_only=False,
+    ):
         self.parts.append(
             Part(
                 name=name,
@@ -83,8 +93,7 @@ class Design:
     def sphere(self, name, radius, center, material, color, **kw):
         self.add(name, "sphere", (radius,), center, material, color, **kw)
 
-    def wall(self, name, radius, thickness, height, z0, material, color, segments=16,
-             flare=0.0):
+    def wall(self, name, radius, thickness, height, z0, material, color, segments=16, flare=0.0):
         """A ring of boxes: the side of a mug, cup or bowl. ``flare`` tilts it outwards."""
         chord = 2 * (radius + thickness / 2) * math.tan(math.pi / segments) * 1.08
         slant = height / math.cos(flare)
@@ -93,8 +102,15 @@ class Design:
             r = radius + thickness / 2 + math.sin(flare) * slant / 2
             pos = (r * math.cos(a), r * math.sin(a), z0 + height / 2)
             quat = quat_mul(axis_angle_quat((0, 0, 1), a), axis_angle_quat((0, 1, 0), flare))
-            self.add(f"{name}_{k}", "box", (thickness / 2, chord / 2, slant / 2), pos,
-                     material, color, quat=quat)
+            self.add(
+                f"{name}_{k}",
+                "box",
+                (thickness / 2, chord / 2, slant / 2),
+                pos,
+                material,
+                color,
+                quat=quat,
+            )
 
     def finish(self) -> list[Part]:
         return rest_on_table(self.parts)

@@ -24,8 +24,20 @@ COLORS: dict[str, tuple[float, float, float]] = {
 }
 
 SHAPES: tuple[str, ...] = (
-    "sphere", "hemisphere", "ellipsoid", "cylinder", "cone", "cube", "cuboid", "disk",
-    "ring", "L-shape", "T-shape", "flat", "elongated", "irregular",
+    "sphere",
+    "hemisphere",
+    "ellipsoid",
+    "cylinder",
+    "cone",
+    "cube",
+    "cuboid",
+    "disk",
+    "ring",
+    "L-shape",
+    "T-shape",
+    "flat",
+    "elongated",
+    "irregular",
 )
 
 

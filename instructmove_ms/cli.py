@@ -11,8 +11,10 @@ def _cmd_envs(args: argparse.Namespace) -> int:
     from instructmove_ms.tasks import TASKS
 
     for env_id, spec in TASKS.items():
-        print(f"{env_id}\tfamily={spec.family}\trobots={','.join(spec.supported_robots)}"
-              f"\thorizon={spec.max_episode_steps}")
+        print(
+            f"{env_id}\tfamily={spec.family}\trobots={','.join(spec.supported_robots)}"
+            f"\thorizon={spec.max_episode_steps}"
+        )
     return 0
 
 
@@ -21,8 +23,13 @@ def _cmd_episode(args: argparse.Namespace) -> int:
 
     import instructmove_ms  # noqa: F401  (registration)
 
-    env = gym.make(args.task, robot_uids=args.robot, split=args.split, obs_mode="state",
-                   render_backend="none" if args.no_render else "cpu")
+    env = gym.make(
+        args.task,
+        robot_uids=args.robot,
+        split=args.split,
+        obs_mode="state",
+        render_backend="none" if args.no_render else "cpu",
+    )
     env.reset(seed=args.seed)
     print(json.dumps(env.unwrapped.episode.to_dict(), indent=2))
     env.close()

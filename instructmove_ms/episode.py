@@ -56,8 +56,10 @@ class EpisodeSpec:
     @classmethod
     def from_dict(cls, data: dict) -> EpisodeSpec:
         if data.get("version", SPEC_VERSION) != SPEC_VERSION:
-            raise ValueError(f"episode spec version {data.get('version')!r}; "
-                             f"this release reads version {SPEC_VERSION}")
+            raise ValueError(
+                f"episode spec version {data.get('version')!r}; "
+                f"this release reads version {SPEC_VERSION}"
+            )
         fields = dict(data)
         fields["objects"] = tuple(
             ObjectSpec(o["uuid"], o["category"], o["role"], tuple(o["pose"]))

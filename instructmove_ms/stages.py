@@ -6,8 +6,13 @@ import torch
 from mani_skill.utils.geometry.rotation_conversions import quaternion_apply, quaternion_invert
 
 
-def box_distance(point: torch.Tensor, pos: torch.Tensor, quat: torch.Tensor,
-                 center: torch.Tensor, half: torch.Tensor) -> torch.Tensor:
+def box_distance(
+    point: torch.Tensor,
+    pos: torch.Tensor,
+    quat: torch.Tensor,
+    center: torch.Tensor,
+    half: torch.Tensor,
+) -> torch.Tensor:
     """Distance from ``point`` (N, 3) to each object's box (N, K), 0 inside.
 
     Objects have world poses ``pos`` (N, K, 3), ``quat`` (N, K, 4, wxyz); each box has its

@@ -107,11 +107,13 @@ class InstructMoveEnv(BaseEnv):
             raise ValueError(f"got {len(specs)} episode specs for {self.num_envs} sub-scenes")
         for spec in specs:
             if spec.family != self.task.family:
-                raise ValueError(f"episode family {spec.family!r} does not match env family "
-                                 f"{self.task.family!r}")
+                raise ValueError(
+                    f"episode family {spec.family!r} does not match env family {self.task.family!r}"
+                )
             if spec.robot != self.robot_uids:
-                raise ValueError(f"episode robot {spec.robot!r} does not match env robot "
-                                 f"{self.robot_uids!r}")
+                raise ValueError(
+                    f"episode robot {spec.robot!r} does not match env robot {self.robot_uids!r}"
+                )
             for obj in spec.objects:
                 self.catalog[obj.uuid]  # raises with the unknown uuid
         if len({len(s.objects) for s in specs}) != 1:
@@ -139,7 +141,9 @@ class InstructMoveEnv(BaseEnv):
         places = sample_layout(rng, halves, self.task.workspace, self.task.clearance)
         objects = tuple(
             ObjectSpec(
-                inst.uuid, inst.category, role,
+                inst.uuid,
+                inst.category,
+                role,
                 (p.x, p.y, SPAWN_LIFT, math.cos(p.yaw / 2), 0.0, 0.0, math.sin(p.yaw / 2)),
             )
             for (inst, role), p in zip(roles, places, strict=True)
@@ -211,17 +215,22 @@ class InstructMoveEnv(BaseEnv):
     def _initialize_episode(self, env_idx: torch.Tensor, options: dict) -> None:
         idx = [int(i) for i in env_idx]
         for k, obj in enumerate(self.objects):
-            pose = torch.tensor([self.episodes[i].objects[k].pose for i in idx],
-                                dtype=torch.float32, device=self.device)
+            pose = torch.tensor(
+                [self.episodes[i].objects[k].pose for i in idx],
+                dtype=torch.float32,
+                device=self.device,
+            )
             obj.set_pose(Pose.create_from_pq(pose[:, :3], pose[:, 3:]))
             obj.set_linear_velocity(torch.zeros((len(idx), 3), device=self.device))
             obj.set_angular_velocity(torch.zeros((len(idx), 3), device=self.device))
             self._z0[env_idx, k] = pose[:, 2]
-        qpos = torch.tensor([self.episodes[i].robot_qpos for i in idx], dtype=torch.float32,
-                            device=self.device)
+        qpos = torch.tensor(
+            [self.episodes[i].robot_qpos for i in idx], dtype=torch.float32, device=self.device
+        )
         self.agent.reset(qpos)
-        self.agent.robot.set_pose(Pose.create_from_pq(
-            torch.zeros((len(idx), 3), device=self.device)))
+        self.agent.robot.set_pose(
+            Pose.create_from_pq(torch.zeros((len(idx), 3), device=self.device))
+        )
         self._reach[env_idx] = False
         self._lift[env_idx] = False
         self._reached_object[env_idx] = -1

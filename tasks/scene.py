@@ -19,10 +19,16 @@ def build_table(scene, color=(0.55, 0.40, 0.25, 1.0)) -> None:
     builder.add_box_visual(pose, half_size=TABLE_HALF, material=material)
     for sx in (-1, 1):
         for sy in (-1, 1):
-            leg = sapien.Pose(p=[TABLE_CENTER_X + sx * (TABLE_HALF[0] - 0.05),
-                                 sy * (TABLE_HALF[1] - 0.05), -TABLE_HEIGHT / 2])
-            builder.add_box_visual(leg, half_size=(0.03, 0.03, TABLE_HEIGHT / 2 - 0.02),
-                                   material=material)
+            leg = sapien.Pose(
+                p=[
+                    TABLE_CENTER_X + sx * (TABLE_HALF[0] - 0.05),
+                    sy * (TABLE_HALF[1] - 0.05),
+                    -TABLE_HEIGHT / 2,
+                ]
+            )
+            builder.add_box_visual(
+                leg, half_size=(0.03, 0.03, TABLE_HEIGHT / 2 - 0.02), material=material
+            )
     builder.initial_pose = sapien.Pose()
     builder.build_static(name="table")
     build_ground(scene, altitude=-TABLE_HEIGHT)

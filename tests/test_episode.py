@@ -49,8 +49,7 @@ def test_episode_is_text_indispensable(state_env):
         assert target.role == "target" and len(spec.objects) == 6
         assert len(set(categories)) == 6, "every object has its own category"
         assert len(spec.candidates) >= 2 and spec.target in spec.candidates
-        assert any(n in spec.instruction for n in
-                   state_env.unwrapped.catalog[target.uuid].nouns)
+        assert any(n in spec.instruction for n in state_env.unwrapped.catalog[target.uuid].nouns)
         for key in ("seed", "uuid", "target", "distractor", "normal"):
             assert key not in spec.instruction
 
@@ -62,8 +61,9 @@ def test_spec_json_round_trip_and_exact_rebuild(state_env):
     assert again == spec
     moved = dataclasses.replace(
         again,
-        objects=tuple(dataclasses.replace(o, pose=(o.pose[0] + 0.01, *o.pose[1:]))
-                      for o in again.objects),
+        objects=tuple(
+            dataclasses.replace(o, pose=(o.pose[0] + 0.01, *o.pose[1:])) for o in again.objects
+        ),
     )
     state_env.reset(seed=99, options={"episode": moved.to_dict()})
     u = state_env.unwrapped

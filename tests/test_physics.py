@@ -25,12 +25,24 @@ def _spec(target: int) -> EpisodeSpec:
     objects = []
     for k, (cat, x, y) in enumerate(LAYOUT):
         inst = catalog.of_category(cat)[0]
-        objects.append(ObjectSpec(inst.uuid, cat, "target" if k == target else "distractor",
-                                  (x, y, 0.002, 1.0, 0.0, 0.0, 0.0)))
+        objects.append(
+            ObjectSpec(
+                inst.uuid,
+                cat,
+                "target" if k == target else "distractor",
+                (x, y, 0.002, 1.0, 0.0, 0.0, 0.0),
+            )
+        )
     return EpisodeSpec(
-        family="pick_category", robot="franka", snapshot="default", split="train", seed=0,
-        instruction=f"pick up the {objects[target].category}", objects=tuple(objects),
-        target=target, candidates=tuple(range(len(objects))),
+        family="pick_category",
+        robot="franka",
+        snapshot="default",
+        split="train",
+        seed=0,
+        instruction=f"pick up the {objects[target].category}",
+        objects=tuple(objects),
+        target=target,
+        candidates=tuple(range(len(objects))),
         robot_qpos=(0.0, -0.569, 0.0, -1.97, 0.0, 1.5, 0.741, 0.04, 0.04),
     )
 

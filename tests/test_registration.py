@@ -20,8 +20,9 @@ def test_import_registers_envs_and_robots():
 
 
 def _run(code: str) -> str:
-    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
-                         check=True, cwd="/")
+    out = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, check=True, cwd="/"
+    )
     return out.stdout.strip().splitlines()[-1]
 
 

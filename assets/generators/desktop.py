@@ -17,8 +17,13 @@ def marker(d: Design) -> Traits:
     cap_len = length * 0.3
     d.rod("barrel", r, length - cap_len, (-cap_len / 2, 0, r), "plastic", body)
     d.rod("cap", r + 0.001, cap_len, ((length - cap_len) / 2, 0, r), "plastic", color)
-    d.box("clip", (cap_len * 0.35, 0.002, 0.0015), ((length - cap_len) / 2, 0, 2 * r + 0.0015),
-          "plastic", color)
+    d.box(
+        "clip",
+        (cap_len * 0.35, 0.002, 0.0015),
+        ((length - cap_len) / 2, 0, 2 * r + 0.0015),
+        "plastic",
+        color,
+    )
     return Traits((body, color), "plastic", "cylinder")
 
 
@@ -28,8 +33,14 @@ def eraser(d: Design) -> Traits:
     sleeve = d.choice(["blue", "black", "red", "yellow"])
     lx, ly, lz = d.uniform(0.045, 0.065), d.uniform(0.02, 0.026), d.uniform(0.01, 0.013)
     d.box("block", (lx / 2, ly / 2, lz / 2), (0, 0, lz / 2), "rubber", color)
-    d.box("sleeve", (lx * 0.3, ly / 2 + 0.0008, lz / 2 + 0.0008), (-lx * 0.12, 0, lz / 2),
-          "paper", sleeve, visual_only=True)
+    d.box(
+        "sleeve",
+        (lx * 0.3, ly / 2 + 0.0008, lz / 2 + 0.0008),
+        (-lx * 0.12, 0, lz / 2),
+        "paper",
+        sleeve,
+        visual_only=True,
+    )
     return Traits((color, sleeve), "rubber", "cuboid")
 
 
@@ -39,13 +50,26 @@ def tv_remote(d: Design) -> Traits:
     button = "white" if color == "black" else "black"
     lx, ly, lz = d.uniform(0.15, 0.19), d.uniform(0.04, 0.05), d.uniform(0.018, 0.024)
     d.box("body", (lx / 2, ly / 2, lz / 2), (0, 0, lz / 2), "plastic", color)
-    d.add("power", "cylinder", (0.0045, 0.0012), (lx / 2 - 0.015, 0, lz + 0.0006), "rubber", "red",
-          quat=(0.7071068, 0.0, -0.7071068, 0.0), visual_only=True)
+    d.add(
+        "power",
+        "cylinder",
+        (0.0045, 0.0012),
+        (lx / 2 - 0.015, 0, lz + 0.0006),
+        "rubber",
+        "red",
+        quat=(0.7071068, 0.0, -0.7071068, 0.0),
+        visual_only=True,
+    )
     for row in range(4):
         for col in (-1, 0, 1):
-            d.box(f"button_{row}_{col}", (0.004, 0.0045, 0.0008),
-                  (lx / 2 - 0.04 - row * 0.014, col * 0.011, lz + 0.0008), "rubber", button,
-                  visual_only=True)
+            d.box(
+                f"button_{row}_{col}",
+                (0.004, 0.0045, 0.0008),
+                (lx / 2 - 0.04 - row * 0.014, col * 0.011, lz + 0.0008),
+                "rubber",
+                button,
+                visual_only=True,
+            )
     return Traits((color,), "plastic", "cuboid")
 
 

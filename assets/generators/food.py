@@ -12,8 +12,14 @@ from .registry import generator
 def _stem(d: Design, top: float, length: float, leaf: bool) -> None:
     d.upright("stem", 0.0025, length, top - 0.004, "organic", "brown")
     if leaf:
-        d.box("leaf", (0.012, 0.006, 0.0012), (0.01, 0.0, top + 0.002), "organic", "green",
-              yaw=d.uniform(0, math.pi))
+        d.box(
+            "leaf",
+            (0.012, 0.006, 0.0012),
+            (0.01, 0.0, top + 0.002),
+            "organic",
+            "green",
+            yaw=d.uniform(0, math.pi),
+        )
 
 
 @generator("apple")
@@ -47,8 +53,15 @@ def banana(d: Design) -> Traits:
         a = -sweep / 2 + sweep * (k + 0.5) / segments
         center = (arc * math.sin(a), arc * (1 - math.cos(a)), radius)
         r = radius * (0.75 if k in (0, segments - 1) else 1.0)
-        d.add(f"segment_{k}", "capsule", (r, seg_len / 2), center, "organic", color,
-              quat=axis_angle_quat((0, 0, 1), a))
+        d.add(
+            f"segment_{k}",
+            "capsule",
+            (r, seg_len / 2),
+            center,
+            "organic",
+            color,
+            quat=axis_angle_quat((0, 0, 1), a),
+        )
     tip = (arc * math.sin(sweep / 2 + 0.05), arc * (1 - math.cos(sweep / 2 + 0.05)), radius)
     d.sphere("tip", radius * 0.45, tip, "organic", "brown")
     return Traits((color,), "organic", "elongated")
@@ -61,8 +74,14 @@ def tomato(d: Design) -> Traits:
     h = r * d.uniform(0.7, 0.82)
     d.ellipsoid("body", (r, r, h), (0, 0, h), "organic", color)
     for k in range(5):
-        d.box(f"sepal_{k}", (0.011, 0.0025, 0.001), (0, 0, 2 * h), "organic", "green",
-              yaw=k * math.pi / 5)
+        d.box(
+            f"sepal_{k}",
+            (0.011, 0.0025, 0.001),
+            (0, 0, 2 * h),
+            "organic",
+            "green",
+            yaw=k * math.pi / 5,
+        )
     d.upright("stem", 0.002, 0.008, 2 * h, "organic", "green")
     return Traits((color,), "organic", "sphere")
 
@@ -96,10 +115,15 @@ def beverage_bottle(d: Design) -> Traits:
     h = d.uniform(0.15, 0.2)
     body_h = h * 0.62
     d.upright("body", r, body_h, 0.0, "plastic", color, solid_fraction=0.95)
-    d.ellipsoid("shoulder", (r, r, h * 0.14), (0, 0, body_h), "plastic", color,
-                solid_fraction=0.95)
-    d.upright("label", r + 0.0012, body_h * 0.4, body_h * 0.3, "paper",
-              d.choice(["red", "orange", "white", "green"]))
+    d.ellipsoid("shoulder", (r, r, h * 0.14), (0, 0, body_h), "plastic", color, solid_fraction=0.95)
+    d.upright(
+        "label",
+        r + 0.0012,
+        body_h * 0.4,
+        body_h * 0.3,
+        "paper",
+        d.choice(["red", "orange", "white", "green"]),
+    )
     neck_z = body_h + h * 0.1
     d.upright("neck", 0.012, h - neck_z - 0.014, neck_z, "plastic", color)
     d.upright("cap", 0.015, 0.016, h - 0.016, "plastic", cap)

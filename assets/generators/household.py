@@ -25,8 +25,13 @@ def toothbrush(d: Design) -> Traits:
     head = 0.028
     d.box("handle", ((length - head) / 2, 0.007, 0.006), (-head / 2, 0, 0.006), "plastic", color)
     d.box("head", (head / 2, 0.0055, 0.004), ((length - head) / 2, 0, 0.004), "plastic", color)
-    d.box("bristles", (head / 2 - 0.002, 0.005, 0.006), ((length - head) / 2, 0, 0.014),
-          "plastic", "white")
+    d.box(
+        "bristles",
+        (head / 2 - 0.002, 0.005, 0.006),
+        ((length - head) / 2, 0, 0.014),
+        "plastic",
+        "white",
+    )
     return Traits((color,), "plastic", "elongated")
 
 
@@ -53,7 +58,12 @@ def wrench(d: Design) -> Traits:
     d.box("handle", (length / 2 - 0.02, w / 2, t / 2), (0, 0, t / 2), "metal", color)
     head_x = length / 2 - 0.014
     for k, sign in enumerate((-1, 1)):
-        d.box(f"jaw_{k}", (0.014, 0.0055, t / 2), (head_x, sign * (w / 2 + 0.006), t / 2), "metal",
-              color)
+        d.box(
+            f"jaw_{k}",
+            (0.014, 0.0055, t / 2),
+            (head_x, sign * (w / 2 + 0.006), t / 2),
+            "metal",
+            color,
+        )
     d.box("ring", (0.014, w * 0.9, t / 2), (-head_x, 0, t / 2), "metal", color)
     return Traits((color,), "metal", "flat")

@@ -62,10 +62,16 @@ def spoon(d: Design) -> Traits:
     bowl_len = length * 0.3
     handle_len = length - bowl_len
     x0 = -length / 2
-    d.box("handle", (handle_len / 2, 0.006, 0.0018), (x0 + handle_len / 2, 0, 0.006), material,
-          color)
-    d.ellipsoid("bowl", (bowl_len / 2, 0.018, 0.006), (x0 + handle_len + bowl_len / 2 - 0.004,
-                0, 0.006), material, color)
+    d.box(
+        "handle", (handle_len / 2, 0.006, 0.0018), (x0 + handle_len / 2, 0, 0.006), material, color
+    )
+    d.ellipsoid(
+        "bowl",
+        (bowl_len / 2, 0.018, 0.006),
+        (x0 + handle_len + bowl_len / 2 - 0.004, 0, 0.006),
+        material,
+        color,
+    )
     return Traits((color,), "metal" if material == "metal" else "plastic", "elongated")
 
 
@@ -77,13 +83,19 @@ def fork(d: Design) -> Traits:
     head = length * 0.3
     handle_len = length - head
     x0 = -length / 2
-    d.box("handle", (handle_len / 2, 0.006, 0.0018), (x0 + handle_len / 2, 0, 0.003), material,
-          color)
+    d.box(
+        "handle", (handle_len / 2, 0.006, 0.0018), (x0 + handle_len / 2, 0, 0.003), material, color
+    )
     d.box("neck", (0.008, 0.011, 0.0018), (x0 + handle_len + 0.008, 0, 0.003), material, color)
     tine_len = head - 0.016
     for k, y in enumerate((-0.0085, -0.003, 0.003, 0.0085)):
-        d.box(f"tine_{k}", (tine_len / 2, 0.0014, 0.0016),
-              (x0 + handle_len + 0.016 + tine_len / 2, y, 0.003), material, color)
+        d.box(
+            f"tine_{k}",
+            (tine_len / 2, 0.0014, 0.0016),
+            (x0 + handle_len + 0.016 + tine_len / 2, y, 0.003),
+            material,
+            color,
+        )
     return Traits((color,), "metal" if material == "metal" else "plastic", "elongated")
 
 
@@ -98,6 +110,12 @@ def plate(d: Design) -> Traits:
     for k in range(segments):
         a = 2 * math.pi * k / segments
         c = r * 0.7 + rim_w / 2
-        d.box(f"rim_{k}", (rim_w / 2, r * math.tan(math.pi / segments) * 0.95, 0.002),
-              (c * math.cos(a), c * math.sin(a), 0.011), "ceramic", color, yaw=a)
+        d.box(
+            f"rim_{k}",
+            (rim_w / 2, r * math.tan(math.pi / segments) * 0.95, 0.002),
+            (c * math.cos(a), c * math.sin(a), 0.011),
+            "ceramic",
+            color,
+            yaw=a,
+        )
     return Traits((color,), "ceramic", "disk")

@@ -22,8 +22,9 @@ class CategoryGenerator:
 GENERATORS: dict[str, CategoryGenerator] = {}
 
 
-def generator(category: str, synonyms: tuple[str, ...] = (), graspable: bool = True,
-              container: bool = False):
+def generator(
+    category: str, synonyms: tuple[str, ...] = (), graspable: bool = True, container: bool = False
+):
     """Register ``build`` as the generator of ``category``."""
 
     def register(build: Callable[[Design], Traits]) -> Callable[[Design], Traits]:
