@@ -25,11 +25,12 @@ done
 
 log() { printf '[setup] %s\n' "$*"; }
 as_root() { if [ "$(id -u)" = 0 ]; then "$@"; else sudo "$@"; fi; }
-pip_install() { "$py" -m pip install --quiet --disable-pip-version-check "$@"; }
+pip_install() { PIP_ROOT_USER_ACTION=ignore "$py" -m pip install --quiet --disable-pip-version-check "$@"; }
+dist_version() { "$py" -c "import importlib.metadata as m; print(m.version('$1'))" 2>/dev/null; }
 
 # 1. PyTorch --------------------------------------------------------------------------
-if "$py" -c "import torch" >/dev/null 2>&1; then
-  log "torch $("$py" -c 'import torch; print(torch.__version__)') already installed"
+if torch_installed="$(dist_version torch)"; then
+  log "torch $torch_installed already installed"
 else
   log "installing torch==$torch_version"
   pip_install "torch==$torch_version"
@@ -39,7 +40,11 @@ fi
 stamp_dir="$root/.cache"
 stamp="$stamp_dir/setup-${extras:-[runtime]}.stamp"
 want="$(cat pyproject.toml setup.cfg | sha256sum | cut -d' ' -f1) $("$py" -c 'import sys; print(sys.prefix)')"
-if [ -f "$stamp" ] && [ "$(cat "$stamp")" = "$want" ] && "$py" -c "import instructmove_ms" >/dev/null 2>&1; then
+installed_here() {
+  (cd / && "$py" -c "import importlib.util as u, sys; s = u.find_spec('instructmove_ms'); sys.exit(not (s and s.origin.startswith('$root/')))") \
+    >/dev/null 2>&1
+}
+if [ -f "$stamp" ] && [ "$(cat "$stamp")" = "$want" ] && installed_here; then
   log "instructmove-ms already installed (packaging unchanged)"
 else
   log "installing instructmove-ms$extras (editable)"

@@ -281,22 +281,18 @@ class InstructMoveEnv(BaseEnv):
 
     # Rewards --------------------------------------------------------------------------
     def compute_dense_reward(self, obs: Any, action: torch.Tensor, info: dict) -> torch.Tensor:
+        """Approach the target, grasp it, raise it: 1 + 1 + 2, and 5 on success."""
         rows = torch.arange(self.num_envs, device=self.device)
-        target = self.objects_of_target_pose_z() - self._z0[rows, self._target]
-        reward = 1.0 - torch.tanh(10.0 * info["target_distance"])
-        grasped = torch.zeros(self.num_envs, dtype=torch.bool, device=self.device)
-        for k, obj in enumerate(self.objects):
-            is_target = self._target == k
-            if is_target.any():
-                grasped |= is_target & self.agent.is_grasping(obj)
-        reward = reward + grasped.float()
-        reward = reward + 2.0 * grasped.float() * (target / self.task.thresholds.lift).clamp(0, 1)
-        return torch.where(info["success"], torch.full_like(reward, 5.0), reward)
-
-    def objects_of_target_pose_z(self) -> torch.Tensor:
         pos, _ = self._object_poses()
-        rows = torch.arange(self.num_envs, device=self.device)
-        return pos[rows, self._target, 2]
+        rise = pos[rows, self._target, 2] - self._z0[rows, self._target]
+        grasped = torch.zeros(self.num_envs, dtype=torch.bool, device=self.device)
+        for k in torch.unique(self._target).tolist():
+            grasped |= (self._target == k) & self.agent.is_grasping(self.objects[k])
+        reward = 1.0 - torch.tanh(10.0 * info["target_distance"])
+        reward = reward + grasped.float() * (
+            1.0 + 2.0 * (rise / self.task.thresholds.lift).clamp(0, 1)
+        )
+        return torch.where(info["success"], torch.full_like(reward, 5.0), reward)
 
     def compute_normalized_dense_reward(self, obs: Any, action: torch.Tensor, info: dict):
         return self.compute_dense_reward(obs, action, info) / 5.0

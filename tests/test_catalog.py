@@ -1,0 +1,69 @@
+"""The object library: deterministic generation, exact annotations, disjoint splits."""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+
+from instructmove_ms.assets import generate_instance, load_snapshot, taxonomy
+from instructmove_ms.assets.catalog import instance_uuid, is_held_out_category
+from instructmove_ms.assets.generators import GENERATORS
+from instructmove_ms.assets.vocab import COLORS, SHAPES
+from instructmove_ms.sampler import split_pools
+
+
+def test_at_least_twelve_taxonomy_categories_with_ten_instances():
+    catalog = load_snapshot()
+    assert len(catalog.categories) >= 12
+    for cat in catalog.categories:
+        assert cat in taxonomy()
+        assert len(catalog.of_category(cat)) >= 10
+
+
+def test_generation_is_deterministic_and_uuids_stable():
+    a = generate_instance("mug", 3)
+    b = generate_instance("mug", 3)
+    assert a == b
+    assert a.uuid == instance_uuid("mug", 3) == "bd2dd3f7-86bf-5ef4-bd76-2927a67b2c4f"
+    assert generate_instance("mug", 4).parts != a.parts
+
+
+@pytest.mark.parametrize("category", sorted(GENERATORS))
+def test_annotations_are_exact(category):
+    for inst in load_snapshot().of_category(category):
+        lo, hi = inst.bounds
+        assert abs(lo[2]) < 1e-9, "objects rest on z = 0"
+        assert abs(lo[0] + hi[0]) < 1e-9 and abs(lo[1] + hi[1]) < 1e-9, "centred in xy"
+        assert math.isclose(
+            inst.mass, sum(p.volume * p.density for p in inst.parts if not p.visual_only)
+        )
+        assert 0.005 < inst.mass < 2.0
+        assert 1 <= len(inst.colors) <= 2 and set(inst.colors) <= set(COLORS)
+        assert inst.shape in SHAPES
+        assert inst.size == (
+            "small" if inst.height < 0.05 else "medium" if inst.height < 0.12 else "large"
+        )
+        # the named colours are really there: every one is the colour of some part
+        assert set(inst.colors) <= {p.color for p in inst.parts}
+        if inst.is_graspable and not inst.is_container:  # containers are held by the wall
+            assert min(inst.dims[:2]) < 0.08, "fits a parallel gripper from above"
+
+
+def test_splits_are_disjoint():
+    catalog = load_snapshot()
+    seen, _ = split_pools(catalog, "train")
+    unseen_inst, _ = split_pools(catalog, "unseen_instance")
+    unseen_cat, distractors = split_pools(catalog, "unseen_category")
+    ids = [{i.uuid for i in pool} for pool in (seen, unseen_inst, unseen_cat)]
+    assert ids[0] and ids[1] and ids[2]
+    assert not (ids[0] & ids[1]) and not (ids[0] & ids[2]) and not (ids[1] & ids[2])
+    assert all(is_held_out_category(i.category) for i in unseen_cat)
+    assert not any(is_held_out_category(i.category) for i in seen + unseen_inst + distractors)
+
+
+def test_unknown_names_are_reported():
+    with pytest.raises(KeyError, match="'teapot'"):
+        generate_instance("teapot", 0)
+    with pytest.raises(ValueError, match="'validation'"):
+        split_pools(load_snapshot(), "validation")
