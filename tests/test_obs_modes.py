@@ -4,9 +4,10 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from conftest import make_env
 from mani_skill.utils.wrappers import FlattenRGBDObservationWrapper
 from mani_skill.vector.wrappers.gymnasium import ManiSkillVectorEnv
+
+from conftest import make_env
 
 CAMERAS = ("ext1_camera", "ext2_camera", "wrist_camera")
 

@@ -101,3 +101,15 @@ def test_knocked_object_is_not_lifted(ee_env):
     info = hold(ee_env, OPEN, 1)
     assert not bool(info["lift"])
     assert np.isfinite(float(info["target_distance"]))
+
+
+def test_dense_reward_grows_with_progress(ee_env):
+    ee_env.reset(options={"episode": _spec(target=0)})
+    info = hold(ee_env, OPEN, 5)
+    u = ee_env.unwrapped
+    far = float(u.compute_dense_reward(None, None, info))
+    can = u.objects[0].pose.p[0].numpy()
+    height = u.catalog[u.episode.objects[0].uuid].height
+    info = move_to(ee_env, can + [0, 0, height - 0.035], OPEN, steps=80)
+    near = float(u.compute_dense_reward(None, None, info))
+    assert 0.0 <= far < near <= 1.0

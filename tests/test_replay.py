@@ -8,8 +8,9 @@ import sys
 
 import h5py
 import numpy as np
-from conftest import make_env
 from mani_skill.utils.wrappers import RecordEpisode
+
+from conftest import make_env
 
 
 def _record(out_dir, episodes: int = 2, steps: int = 12) -> str:
