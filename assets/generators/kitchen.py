@@ -54,49 +54,45 @@ def spice_jar(d: Design) -> Traits:
     return Traits(("transparent", lid), "glass", "cylinder")
 
 
+def _cutlery_handle(d: Design, colors: list[str], length: tuple[float, float], z: float):
+    """The handle of a spoon or fork along x; returns (material, colour, head start, head)."""
+    color = d.choice(colors)
+    material = "metal" if color == "silver" else "plastic"
+    total = d.uniform(*length)
+    head = total * 0.3
+    handle = total - head
+    x0 = -total / 2
+    d.box("handle", (handle / 2, 0.006, 0.0018), (x0 + handle / 2, 0, z), material, color)
+    return material, color, x0 + handle, head
+
+
 @generator("spoon")
 def spoon(d: Design) -> Traits:
-    color = d.choice(["silver", "silver", "white", "black", "blue"])
-    material = "metal" if color == "silver" else "plastic"
-    length = d.uniform(0.15, 0.19)
-    bowl_len = length * 0.3
-    handle_len = length - bowl_len
-    x0 = -length / 2
-    d.box(
-        "handle", (handle_len / 2, 0.006, 0.0018), (x0 + handle_len / 2, 0, 0.006), material, color
+    material, color, x_head, head = _cutlery_handle(
+        d, ["silver", "silver", "white", "black", "blue"], (0.15, 0.19), z=0.006
     )
     d.ellipsoid(
-        "bowl",
-        (bowl_len / 2, 0.018, 0.006),
-        (x0 + handle_len + bowl_len / 2 - 0.004, 0, 0.006),
-        material,
-        color,
+        "bowl", (head / 2, 0.018, 0.006), (x_head + head / 2 - 0.004, 0, 0.006), material, color
     )
-    return Traits((color,), "metal" if material == "metal" else "plastic", "elongated")
+    return Traits((color,), material, "elongated")
 
 
 @generator("fork")
 def fork(d: Design) -> Traits:
-    color = d.choice(["silver", "silver", "white", "black"])
-    material = "metal" if color == "silver" else "plastic"
-    length = d.uniform(0.16, 0.2)
-    head = length * 0.3
-    handle_len = length - head
-    x0 = -length / 2
-    d.box(
-        "handle", (handle_len / 2, 0.006, 0.0018), (x0 + handle_len / 2, 0, 0.003), material, color
+    material, color, x_head, head = _cutlery_handle(
+        d, ["silver", "silver", "white", "black"], (0.16, 0.2), z=0.003
     )
-    d.box("neck", (0.008, 0.011, 0.0018), (x0 + handle_len + 0.008, 0, 0.003), material, color)
+    d.box("neck", (0.008, 0.011, 0.0018), (x_head + 0.008, 0, 0.003), material, color)
     tine_len = head - 0.016
     for k, y in enumerate((-0.0085, -0.003, 0.003, 0.0085)):
         d.box(
             f"tine_{k}",
             (tine_len / 2, 0.0014, 0.0016),
-            (x0 + handle_len + 0.016 + tine_len / 2, y, 0.003),
+            (x_head + 0.016 + tine_len / 2, y, 0.003),
             material,
             color,
         )
-    return Traits((color,), "metal" if material == "metal" else "plastic", "elongated")
+    return Traits((color,), material, "elongated")
 
 
 @generator("plate", synonyms=("plate", "dish"), graspable=False, container=True)

@@ -1,0 +1,29 @@
+"""The ``instructmove`` command line."""
+
+from __future__ import annotations
+
+import json
+
+from instructmove_ms.cli import main
+
+
+def test_episode_prints_the_seeds_spec(capsys):
+    assert main(["episode", "--seed", "5", "--no-render"]) == 0
+    spec = json.loads(capsys.readouterr().out)
+    assert spec["seed"] == 5 and spec["family"] == "pick_category"
+    assert spec["objects"][spec["target"]]["role"] == "target"
+
+
+def test_envs_and_assets_list_what_is_registered(capsys):
+    assert main(["envs"]) == 0
+    assert "PickCategory-InstructMove" in capsys.readouterr().out
+    assert main(["assets", "--category", "mug"]) == 0
+    rows = [json.loads(line) for line in capsys.readouterr().out.splitlines()]
+    assert len(rows) == 10 and {r["category"] for r in rows} == {"mug"}
+    assert all(r["is_container"] for r in rows)
+
+
+def test_bad_split_is_a_clear_error(capsys):
+    assert main(["episode", "--split", "nope", "--no-render"]) == 2
+    err = capsys.readouterr().err
+    assert "'nope'" in err and "'unseen_instance'" in err
