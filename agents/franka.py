@@ -11,6 +11,7 @@ from mani_skill.sensors.camera import CameraConfig
 from mani_skill.utils import sapien_utils
 
 from .cameras import DEFAULT_HEIGHT, DEFAULT_WIDTH, Intrinsics
+from .interface import InstructMoveAgent
 
 #: Rest pose of the reference setup: 7 arm joints, then both fingers open (0.04 m).
 FRANKA_REST_QPOS = np.array([0.0, -0.569, 0.0, -1.97, 0.0, 1.5, 0.741, 0.04, 0.04])
@@ -24,7 +25,7 @@ WRIST_EYE = (0.124, -0.0018, -0.049)
 
 
 @register_agent()
-class FrankaInstructMove(Panda):
+class FrankaInstructMove(InstructMoveAgent, Panda):
     """Franka Panda for InstructMove.
 
     Control modes are ManiSkill's Panda ones; the default ``pd_joint_pos`` is the 8-D policy
@@ -39,6 +40,10 @@ class FrankaInstructMove(Panda):
 
     uid = "franka"
     keyframes = dict(rest=Keyframe(qpos=FRANKA_REST_QPOS.copy(), pose=sapien.Pose()))
+
+    @property
+    def tcp_links(self) -> list:
+        return [self.tcp]
 
     @property
     def _sensor_configs(self):

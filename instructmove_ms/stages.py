@@ -7,20 +7,21 @@ from mani_skill.utils.geometry.rotation_conversions import quaternion_apply, qua
 
 
 def box_distance(
-    point: torch.Tensor,
+    points: torch.Tensor,
     pos: torch.Tensor,
     quat: torch.Tensor,
     center: torch.Tensor,
     half: torch.Tensor,
 ) -> torch.Tensor:
-    """Distance from ``point`` (N, 3) to each object's box (N, K), 0 inside.
+    """Distance from each of ``points`` (N, P, 3) to each object's box: (N, P, K), 0 inside.
 
     Objects have world poses ``pos`` (N, K, 3), ``quat`` (N, K, 4, wxyz); each box has its
     ``center`` and ``half`` extents (N, K, 3) in the object's frame.
     """
-    rel = point[:, None, :] - pos
-    local = quaternion_apply(quaternion_invert(quat), rel) - center
-    outside = (local.abs() - half).clamp(min=0.0)
+    rel = points[:, :, None, :] - pos[:, None]
+    inv = quaternion_invert(quat)[:, None].expand(*rel.shape[:-1], 4)
+    local = quaternion_apply(inv, rel) - center[:, None]
+    outside = (local.abs() - half[:, None]).clamp(min=0.0)
     return torch.linalg.norm(outside, dim=-1)
 
 

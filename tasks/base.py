@@ -149,10 +149,7 @@ class InstructMoveEnv(BaseEnv):
             for (inst, role), p in zip(roles, places, strict=True)
         )
         target = next(k for k, (_, role) in enumerate(roles) if role == "target")
-        rest = np.asarray(self.agent.keyframes["rest"].qpos, dtype=float)
-        qpos = rest.copy()
-        arm = len(self.agent.arm_joint_names)
-        qpos[:arm] += rng.normal(0.0, self.robot_init_qpos_noise, size=arm)
+        qpos = self.agent.sample_init_qpos(rng, self.robot_init_qpos_noise)
         return EpisodeSpec(
             family=self.task.family,
             robot=self.robot_uids,
@@ -251,7 +248,9 @@ class InstructMoveEnv(BaseEnv):
     def evaluate(self) -> dict:
         th = self.task.thresholds
         pos, quat = self._object_poses()
-        dist = box_distance(self.agent.tcp_pose.p, pos, quat, self._box_center, self._box_half)
+        dist = box_distance(
+            self.agent.tcp_positions(), pos, quat, self._box_center, self._box_half
+        ).amin(dim=1)
         rows = torch.arange(self.num_envs, device=self.device)
         within = dist < th.reach
         self._reached_object = latch_first(self._reached_object, first_index(within, dist))
@@ -272,7 +271,7 @@ class InstructMoveEnv(BaseEnv):
         }
 
     def _get_obs_extra(self, info: dict) -> dict:
-        obs = dict(tcp_pose=self.agent.tcp_pose.raw_pose)
+        obs = dict(tcp_pose=self.agent.tcp_state())
         if "state" in self.obs_mode:
             pos, quat = self._object_poses()
             obs["obj_pose"] = torch.cat([pos, quat], dim=-1).flatten(1)
