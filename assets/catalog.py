@@ -14,7 +14,7 @@ import yaml
 
 from .design import Design
 from .generators import GENERATORS
-from .parts import Part, union_bounds
+from .parts import Part, Region, union_bounds
 from .vocab import material_word
 
 #: Namespace of instance uuids: uuid5(NAMESPACE, "<category>/<index>") never changes.
@@ -73,6 +73,7 @@ class Instance:
     nouns: tuple[str, ...]
     is_graspable: bool
     is_container: bool
+    interior: Region | None = None  # placement region of a container
 
     @property
     def bounds(self) -> tuple[np.ndarray, np.ndarray]:
@@ -116,6 +117,13 @@ class Instance:
             "mass": round(self.mass, 5),
             "is_graspable": self.is_graspable,
             "is_container": self.is_container,
+            "interior": None
+            if self.interior is None
+            else {
+                "center": [round(v, 5) for v in self.interior.center],
+                "half": [round(v, 5) for v in self.interior.half],
+                "height": round(self.interior.height, 5),
+            },
             "held_out": self.held_out,
         }
 
@@ -137,19 +145,23 @@ def generate_instance(category: str, index: int) -> Instance:
     traits = gen.build(design)
     if not 1 <= len(traits.colors) <= 2:
         raise ValueError(f"{category}: an instance names 1 or 2 colours, got {traits.colors}")
+    parts, interior = design.finish()
+    if gen.container != (interior is not None):
+        raise ValueError(f"{category}: a container declares its interior, and only a container")
     return Instance(
         uuid=uid,
         category=category,
         index=index,
         domain=entry.domain,
         super_category=entry.super_category,
-        parts=tuple(design.finish()),
+        parts=tuple(parts),
         colors=tuple(dict.fromkeys(traits.colors)),
         material=material_word(traits.material),
         shape=traits.shape,
         nouns=gen.synonyms,
         is_graspable=gen.graspable,
         is_container=gen.container,
+        interior=interior,
     )
 
 

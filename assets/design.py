@@ -7,7 +7,17 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .parts import IDENTITY, X_TO_Y, X_TO_Z, Part, axis_angle_quat, quat_mul, rest_on_table
+from .parts import (
+    IDENTITY,
+    X_TO_Y,
+    X_TO_Z,
+    Part,
+    Region,
+    axis_angle_quat,
+    quat_mul,
+    rest_offset,
+    shifted,
+)
 from .vocab import COLORS
 
 
@@ -27,6 +37,7 @@ class Design:
         self.rng = rng
         self.parts: list[Part] = []
         self._shades: dict[str, tuple[float, float, float]] = {}
+        self._interior: Region | None = None
 
     # random helpers ------------------------------------------------------------------
     def uniform(self, low: float, high: float) -> float:
@@ -95,8 +106,9 @@ class Design:
 
     def wall(self, name, radius, thickness, height, z0, material, color, segments=16, flare=0.0):
         """A ring of boxes: the side of a mug, cup or bowl. ``flare`` tilts it outwards."""
-        chord = 2 * (radius + thickness / 2) * math.tan(math.pi / segments) * 1.08
         slant = height / math.cos(flare)
+        outer = radius + thickness + math.sin(flare) * slant  # widest ring: close it there
+        chord = 2 * outer * math.tan(math.pi / segments) * 1.02
         for k in range(segments):
             a = 2 * math.pi * k / segments
             r = radius + thickness / 2 + math.sin(flare) * slant / 2
@@ -112,5 +124,18 @@ class Design:
                 quat=quat,
             )
 
-    def finish(self) -> list[Part]:
-        return rest_on_table(self.parts)
+    def interior(
+        self,
+        half: tuple[float, float],
+        floor_z: float,
+        rim_z: float,
+        center: tuple[float, float] = (0.0, 0.0),
+    ) -> None:
+        """Declare the placement region of a container (in the same frame as the parts)."""
+        self._interior = Region((center[0], center[1], floor_z), half, rim_z - floor_z)
+
+    def finish(self) -> tuple[list[Part], Region | None]:
+        """The parts resting on z = 0, centred in xy, and the interior moved with them."""
+        offset = rest_offset(self.parts)
+        interior = self._interior.shifted(offset) if self._interior else None
+        return shifted(self.parts, offset), interior

@@ -121,11 +121,28 @@ def union_bounds(parts: list[Part]) -> tuple[np.ndarray, np.ndarray]:
     return np.min(lows, axis=0), np.max(highs, axis=0)
 
 
-def rest_on_table(parts: list[Part]) -> list[Part]:
-    """Shift parts so that the object's lowest point is at z = 0 and it is centred in xy."""
+@dataclass(frozen=True)
+class Region:
+    """A box in the object frame where things can be placed: a container's interior."""
+
+    center: tuple[float, float, float]  # centre of the floor
+    half: tuple[float, float]  # half extents in x and y
+    height: float  # from the floor up to the rim
+
+    def shifted(self, offset: np.ndarray) -> Region:
+        return Region(
+            tuple(float(v) for v in np.asarray(self.center) + offset), self.half, self.height
+        )
+
+
+def rest_offset(parts: list[Part]) -> np.ndarray:
+    """The shift that puts the lowest point at z = 0 and centres the object in xy."""
     lo, hi = union_bounds(parts)
-    shift = np.array([-(lo[0] + hi[0]) / 2, -(lo[1] + hi[1]) / 2, -lo[2]])
+    return np.array([-(lo[0] + hi[0]) / 2, -(lo[1] + hi[1]) / 2, -lo[2]])
+
+
+def shifted(parts: list[Part], offset: np.ndarray) -> list[Part]:
     return [
-        Part(**{**p.__dict__, "pos": tuple(float(v) for v in np.asarray(p.pos) + shift)})
+        Part(**{**p.__dict__, "pos": tuple(float(v) for v in np.asarray(p.pos) + offset)})
         for p in parts
     ]

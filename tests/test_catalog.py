@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
 import pytest
 
 from instructmove_ms.assets import generate_instance, load_snapshot, taxonomy
@@ -67,3 +68,33 @@ def test_unknown_names_are_reported():
         generate_instance("teapot", 0)
     with pytest.raises(ValueError, match="'validation'"):
         split_pools(load_snapshot(), "validation")
+
+
+def test_category_nouns_never_name_another_category():
+    owner: dict[str, str] = {}
+    for cat, gen in GENERATORS.items():
+        for noun in gen.synonyms:
+            assert noun not in owner, f"{noun!r} names both {owner.get(noun)} and {cat}"
+            owner[noun] = cat
+
+
+def test_every_instance_passes_the_quality_checks():
+    from instructmove_ms.assets.quality import check_instances
+
+    failures = [
+        (r.category, r.failures)
+        for r in check_instances(list(load_snapshot().instances))
+        if not r.ok
+    ]
+    assert not failures
+
+
+def test_containers_declare_an_interior_inside_their_bounds():
+    for inst in load_snapshot().instances:
+        if not inst.is_container:
+            assert inst.interior is None
+            continue
+        lo, hi = inst.bounds
+        c, half = np.asarray(inst.interior.center), np.asarray(inst.interior.half)
+        assert np.all(c[:2] - half >= lo[:2]) and np.all(c[:2] + half <= hi[:2])
+        assert lo[2] <= c[2] < c[2] + inst.interior.height <= hi[2] + 1e-9

@@ -8,7 +8,7 @@ from .registry import generator
 BRIGHT = ["red", "blue", "green", "black", "yellow", "orange", "purple", "pink"]
 
 
-@generator("marker", synonyms=("marker", "marker pen", "felt pen"))
+@generator("marker", size=(0.11, 0.16), synonyms=("marker", "marker pen", "felt-tip marker"))
 def marker(d: Design) -> Traits:
     color = d.choice(BRIGHT)
     body = d.choice(["white", "white", "black", "gray"])
@@ -27,7 +27,7 @@ def marker(d: Design) -> Traits:
     return Traits((body, color), "plastic", "cylinder")
 
 
-@generator("eraser", synonyms=("eraser", "rubber eraser"))
+@generator("eraser", size=(0.04, 0.08), synonyms=("eraser", "rubber eraser"))
 def eraser(d: Design) -> Traits:
     color = d.choice(["white", "pink", "blue", "green"])
     sleeve = d.choice(["blue", "black", "red", "yellow"])
@@ -44,7 +44,9 @@ def eraser(d: Design) -> Traits:
     return Traits((color, sleeve), "rubber", "cuboid")
 
 
-@generator("tv_remote", synonyms=("tv remote", "remote control", "remote"))
+@generator(
+    "tv_remote", size=(0.13, 0.22), synonyms=("tv remote", "television remote", "tv remote control")
+)
 def tv_remote(d: Design) -> Traits:
     color = d.choice(["black", "black", "gray", "white", "silver"])
     button = "white" if color == "black" else "black"
@@ -73,7 +75,11 @@ def tv_remote(d: Design) -> Traits:
     return Traits((color,), "plastic", "cuboid")
 
 
-@generator("usb_drive", synonyms=("usb drive", "flash drive", "usb stick", "thumb drive"))
+@generator(
+    "usb_drive",
+    size=(0.04, 0.08),
+    synonyms=("usb drive", "flash drive", "usb stick", "thumb drive"),
+)
 def usb_drive(d: Design) -> Traits:
     color = d.choice(BRIGHT + ["silver"])
     lx, ly, lz = d.uniform(0.04, 0.055), d.uniform(0.016, 0.022), d.uniform(0.008, 0.011)

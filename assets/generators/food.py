@@ -22,7 +22,7 @@ def _stem(d: Design, top: float, length: float, leaf: bool) -> None:
         )
 
 
-@generator("apple")
+@generator("apple", size=(0.055, 0.09))
 def apple(d: Design) -> Traits:
     color = d.choice(["red", "red", "green", "yellow"])
     r = d.uniform(0.03, 0.037)
@@ -31,7 +31,7 @@ def apple(d: Design) -> Traits:
     return Traits((color,), "organic", "sphere")
 
 
-@generator("lemon")
+@generator("lemon", size=(0.06, 0.1))
 def lemon(d: Design) -> Traits:
     color = d.choice(["yellow", "yellow", "green"])
     a, b = d.uniform(0.035, 0.045), d.uniform(0.026, 0.031)
@@ -41,7 +41,7 @@ def lemon(d: Design) -> Traits:
     return Traits((color,), "organic", "ellipsoid")
 
 
-@generator("banana")
+@generator("banana", size=(0.12, 0.22))
 def banana(d: Design) -> Traits:
     color = d.choice(["yellow", "yellow", "green"])
     radius = d.uniform(0.015, 0.019)
@@ -67,7 +67,7 @@ def banana(d: Design) -> Traits:
     return Traits((color,), "organic", "elongated")
 
 
-@generator("tomato")
+@generator("tomato", size=(0.05, 0.09))
 def tomato(d: Design) -> Traits:
     color = d.choice(["red", "red", "orange"])
     r = d.uniform(0.028, 0.04)
@@ -86,7 +86,7 @@ def tomato(d: Design) -> Traits:
     return Traits((color,), "organic", "sphere")
 
 
-@generator("egg")
+@generator("egg", size=(0.045, 0.07))
 def egg(d: Design) -> Traits:
     color = d.choice(["white", "beige", "brown"])
     r = d.uniform(0.02, 0.023)
@@ -94,7 +94,7 @@ def egg(d: Design) -> Traits:
     return Traits((color,), "organic", "ellipsoid")
 
 
-@generator("canned_coke", synonyms=("can of coke", "soda can", "coke can", "can"))
+@generator("canned_coke", size=(0.1, 0.14), synonyms=("can of coke", "soda can", "coke can"))
 def canned_coke(d: Design) -> Traits:
     color = d.choice(["red", "red", "silver", "black", "blue"])
     r = d.uniform(0.031, 0.034)
@@ -107,7 +107,11 @@ def canned_coke(d: Design) -> Traits:
     return Traits(colors, "metal", "cylinder")
 
 
-@generator("beverage_bottle", synonyms=("bottle", "drink bottle", "beverage bottle"))
+@generator(
+    "beverage_bottle",
+    size=(0.14, 0.26),
+    synonyms=("drink bottle", "beverage bottle", "soft drink bottle"),
+)
 def beverage_bottle(d: Design) -> Traits:
     color = d.choice(["transparent", "green", "blue", "transparent"])
     cap = d.choice(["white", "blue", "red", "black"])

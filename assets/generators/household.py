@@ -7,7 +7,7 @@ from .desktop import BRIGHT
 from .registry import generator
 
 
-@generator("sponge", synonyms=("sponge", "kitchen sponge", "scrub sponge"))
+@generator("sponge", size=(0.07, 0.12), synonyms=("sponge", "kitchen sponge", "scrub sponge"))
 def sponge(d: Design) -> Traits:
     color = d.choice(["yellow", "yellow", "pink", "blue", "orange"])
     pad = d.choice(["green", "green", "blue", "gray"])
@@ -18,7 +18,7 @@ def sponge(d: Design) -> Traits:
     return Traits((color, pad), "fabric", "cuboid")
 
 
-@generator("toothbrush")
+@generator("toothbrush", size=(0.15, 0.21))
 def toothbrush(d: Design) -> Traits:
     color = d.choice(BRIGHT + ["white"])
     length = d.uniform(0.17, 0.19)
@@ -35,7 +35,7 @@ def toothbrush(d: Design) -> Traits:
     return Traits((color,), "plastic", "elongated")
 
 
-@generator("screwdriver")
+@generator("screwdriver", size=(0.14, 0.26))
 def screwdriver(d: Design) -> Traits:
     color = d.choice(["red", "yellow", "blue", "black", "orange", "green"])
     handle_len = d.uniform(0.085, 0.11)
@@ -49,7 +49,7 @@ def screwdriver(d: Design) -> Traits:
     return Traits((color, "silver"), "plastic", "elongated")
 
 
-@generator("wrench", synonyms=("wrench", "spanner"))
+@generator("wrench", size=(0.12, 0.22), synonyms=("wrench", "spanner"))
 def wrench(d: Design) -> Traits:
     color = d.choice(["silver", "silver", "gray", "black"])
     length = d.uniform(0.14, 0.2)

@@ -10,7 +10,7 @@ from .registry import generator
 CERAMIC_COLORS = ["white", "white", "blue", "red", "green", "yellow", "black", "beige", "pink"]
 
 
-@generator("mug", synonyms=("mug", "cup", "coffee mug"), container=True)
+@generator("mug", size=(0.08, 0.13), synonyms=("mug", "coffee mug"), container=True)
 def mug(d: Design) -> Traits:
     color = d.choice(CERAMIC_COLORS)
     r = d.uniform(0.03, 0.038)
@@ -26,10 +26,11 @@ def mug(d: Design) -> Traits:
     for name, z in (("handle_top", z_mid + grip_h / 2), ("handle_bottom", z_mid - grip_h / 2)):
         d.box(name, (reach / 2 + 0.002, 0.006, 0.004), (r + t + reach / 2, 0, z), "ceramic", color)
     d.box("handle_grip", (0.004, 0.006, grip_h / 2 + 0.004), (x_out, 0, z_mid), "ceramic", color)
+    d.interior((r * 0.7, r * 0.7), floor_z=0.008, rim_z=h)
     return Traits((color,), "ceramic", "cylinder")
 
 
-@generator("bowl", container=True)
+@generator("bowl", size=(0.1, 0.2), container=True)
 def bowl(d: Design) -> Traits:
     color = d.choice(CERAMIC_COLORS)
     material = d.choice(["ceramic", "ceramic", "plastic", "wood"])
@@ -39,10 +40,11 @@ def bowl(d: Design) -> Traits:
     d.upright("foot", r_base * 0.8, 0.006, 0.0, material, color)
     d.upright("base", r_base + 0.004, 0.006, 0.006, material, color)
     d.wall("wall", r_base, 0.005, h - 0.012, 0.012, material, color, segments=18, flare=flare)
+    d.interior((r_base * 0.7, r_base * 0.7), floor_z=0.012, rim_z=h)
     return Traits((color,), material, "hemisphere")
 
 
-@generator("spice_jar", synonyms=("spice jar", "jar", "seasoning jar"))
+@generator("spice_jar", size=(0.07, 0.12), synonyms=("spice jar", "seasoning jar"))
 def spice_jar(d: Design) -> Traits:
     lid = d.choice(["red", "black", "silver", "white", "green"])
     content = d.choice(["red", "brown", "green", "orange", "beige"])
@@ -66,7 +68,7 @@ def _cutlery_handle(d: Design, colors: list[str], length: tuple[float, float], z
     return material, color, x0 + handle, head
 
 
-@generator("spoon")
+@generator("spoon", size=(0.12, 0.21))
 def spoon(d: Design) -> Traits:
     material, color, x_head, head = _cutlery_handle(
         d, ["silver", "silver", "white", "black", "blue"], (0.15, 0.19), z=0.006
@@ -77,7 +79,7 @@ def spoon(d: Design) -> Traits:
     return Traits((color,), material, "elongated")
 
 
-@generator("fork")
+@generator("fork", size=(0.14, 0.22))
 def fork(d: Design) -> Traits:
     material, color, x_head, head = _cutlery_handle(
         d, ["silver", "silver", "white", "black"], (0.16, 0.2), z=0.003
@@ -95,23 +97,14 @@ def fork(d: Design) -> Traits:
     return Traits((color,), material, "elongated")
 
 
-@generator("plate", synonyms=("plate", "dish"), graspable=False, container=True)
+@generator("plate", size=(0.14, 0.26), synonyms=("plate", "dish"), graspable=False, container=True)
 def plate(d: Design) -> Traits:
     color = d.choice(CERAMIC_COLORS)
     r = d.uniform(0.075, 0.1)
+    rim_h = d.uniform(0.01, 0.016)
     d.upright("foot", r * 0.6, 0.004, 0.0, "ceramic", color)
     d.upright("floor", r * 0.7, 0.004, 0.004, "ceramic", color)
-    segments = 20
-    rim_w = r * 0.3
-    for k in range(segments):
-        a = 2 * math.pi * k / segments
-        c = r * 0.7 + rim_w / 2
-        d.box(
-            f"rim_{k}",
-            (rim_w / 2, r * math.tan(math.pi / segments) * 0.95, 0.002),
-            (c * math.cos(a), c * math.sin(a), 0.011),
-            "ceramic",
-            color,
-            yaw=a,
-        )
+    flare = math.atan2(r * 0.3, rim_h)
+    d.wall("rim", r * 0.7, 0.003, rim_h, 0.006, "ceramic", color, segments=20, flare=flare)
+    d.interior((r * 0.5, r * 0.5), floor_z=0.008, rim_z=0.006 + rim_h)
     return Traits((color,), "ceramic", "disk")

@@ -15,6 +15,7 @@ class CategoryGenerator:
     category: str
     build: Callable[[Design], Traits]
     synonyms: tuple[str, ...]  # nouns a person uses for it, most common first
+    size: tuple[float, float]  # plausible range of the largest dimension, metres
     graspable: bool = True
     container: bool = False
 
@@ -23,15 +24,25 @@ GENERATORS: dict[str, CategoryGenerator] = {}
 
 
 def generator(
-    category: str, synonyms: tuple[str, ...] = (), graspable: bool = True, container: bool = False
+    category: str,
+    *,
+    size: tuple[float, float],
+    synonyms: tuple[str, ...] = (),
+    graspable: bool = True,
+    container: bool = False,
 ):
-    """Register ``build`` as the generator of ``category``."""
+    """Register ``build`` as the generator of ``category``.
+
+    ``size`` is the category prior on the largest dimension (checked on every instance);
+    ``synonyms`` are the nouns people use, most common first (default: the category name);
+    a ``container`` generator declares its interior with ``Design.interior``.
+    """
 
     def register(build: Callable[[Design], Traits]) -> Callable[[Design], Traits]:
         if category in GENERATORS:
             raise ValueError(f"category {category!r} has two generators")
         nouns = synonyms or (category.replace("_", " "),)
-        GENERATORS[category] = CategoryGenerator(category, build, nouns, graspable, container)
+        GENERATORS[category] = CategoryGenerator(category, build, nouns, size, graspable, container)
         return build
 
     return register

@@ -1,0 +1,70 @@
+"""Contact sheets: every instance of a super-category, photographed and labelled."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import cv2
+import numpy as np
+
+from .catalog import Instance
+from .sim import look_at, spawn, table_scene
+
+TILE = 192
+
+
+def photograph(instances: list[Instance], tile: int = TILE) -> list[np.ndarray]:
+    """One RGB tile per instance, from the front-left and above, framed by its size."""
+    scene = table_scene(render=True)
+    camera = scene.add_camera("sheet", tile, tile, math.radians(40), 0.005, 10.0)
+    images = []
+    for inst in instances:
+        entity = spawn(scene, inst, z=0.0)
+        radius = max(float(np.linalg.norm(inst.dims)) / 2, 0.03)
+        center = np.array([0.0, 0.0, inst.height / 2])
+        eye = center + radius * 2.9 * np.array([0.75, 0.45, 0.6]) / np.linalg.norm(
+            [0.75, 0.45, 0.6]
+        )
+        camera.set_local_pose(look_at(eye, center))
+        scene.update_render()
+        camera.take_picture()
+        rgba = camera.get_picture("Color")
+        images.append((np.clip(rgba[..., :3], 0, 1) * 255).astype(np.uint8))
+        scene.remove_entity(entity)
+    return images
+
+
+def label(image: np.ndarray, lines: list[str]) -> np.ndarray:
+    out = np.ascontiguousarray(image[..., ::-1])  # BGR for OpenCV
+    for k, text in enumerate(lines):
+        y = 14 + 13 * k
+        cv2.putText(out, text, (4, y), cv2.FONT_HERSHEY_SIMPLEX, 0.36, (0, 0, 0), 2, cv2.LINE_AA)
+        cv2.putText(
+            out, text, (4, y), cv2.FONT_HERSHEY_SIMPLEX, 0.36, (255, 255, 255), 1, cv2.LINE_AA
+        )
+    return out
+
+
+def contact_sheet(instances: list[Instance], path: Path, columns: int = 10) -> Path:
+    """Write a labelled grid of ``instances`` (one row per category) to ``path`` (PNG)."""
+    tiles = photograph(instances)
+    rows: dict[str, list[np.ndarray]] = {}
+    for inst, img in zip(instances, tiles, strict=True):
+        text = [
+            f"{inst.category} #{inst.index}",
+            "/".join(inst.colors),
+            f"{inst.material} {inst.height * 100:.1f}cm",
+        ]
+        rows.setdefault(inst.category, []).append(label(img, text))
+    blank = np.full((TILE, TILE, 3), 255, np.uint8)
+    grid = []
+    for row in rows.values():
+        for start in range(0, len(row), columns):
+            chunk = row[start : start + columns]
+            grid.append(np.concatenate(chunk + [blank] * (columns - len(chunk)), axis=1))
+    path.parent.mkdir(parents=True, exist_ok=True)
+    tmp = path.with_suffix(".tmp.png")
+    cv2.imwrite(str(tmp), np.concatenate(grid, axis=0))
+    tmp.replace(path)
+    return path

@@ -1,0 +1,45 @@
+"""A bare SAPIEN scene for checking and photographing single instances."""
+
+from __future__ import annotations
+
+import numpy as np
+import sapien
+
+from .catalog import Instance
+from .sapien_builder import actor_builder, physical_material
+
+TIMESTEP = 1.0 / 120.0
+
+
+def look_at(eye, target, up=(0.0, 0.0, 1.0)) -> sapien.Pose:
+    """SAPIEN camera pose (x forward, y left, z up) at ``eye`` looking at ``target``."""
+    forward = np.asarray(target, float) - np.asarray(eye, float)
+    forward /= np.linalg.norm(forward)
+    left = np.cross(up, forward)
+    left /= np.linalg.norm(left)
+    mat = np.eye(4)
+    mat[:3, :3] = np.stack([forward, left, np.cross(forward, left)], axis=1)
+    mat[:3, 3] = eye
+    return sapien.Pose(mat)
+
+
+def table_scene(render: bool = False) -> sapien.Scene:
+    """Ground plane as the table top at z = 0 (wood friction), lit when ``render``."""
+    scene = sapien.Scene()
+    scene.set_timestep(TIMESTEP)
+    scene.add_ground(0.0, render=render, material=physical_material("wood"))
+    if render:
+        scene.set_ambient_light([0.45, 0.45, 0.45])
+        scene.add_directional_light([0.3, 0.5, -1.0], [0.9, 0.9, 0.9], shadow=False)
+        scene.add_directional_light([-0.4, -0.3, -0.6], [0.3, 0.3, 0.3], shadow=False)
+    return scene
+
+
+def spawn(
+    scene: sapien.Scene, instance: Instance, xy=(0.0, 0.0), yaw: float = 0.0, z: float = 0.002
+) -> sapien.Entity:
+    builder = actor_builder(scene, instance)
+    builder.initial_pose = sapien.Pose(
+        [xy[0], xy[1], z], [np.cos(yaw / 2), 0.0, 0.0, np.sin(yaw / 2)]
+    )
+    return builder.build(name=instance.uuid)
