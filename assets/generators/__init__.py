@@ -1,6 +1,20 @@
 """Procedural generators, one per category; importing this package registers them all."""
 
-from . import desktop, food, household, kitchen  # noqa: F401  (registration)
+from . import (  # noqa: F401  (registration)
+    bathroom,
+    bedroom,
+    desktop,
+    electronics,
+    food,
+    groceries,
+    household,
+    kitchen,
+    kitchenware,
+    livingroom,
+    receptacles,
+    stationery,
+    tools,
+)
 from .registry import GENERATORS, CategoryGenerator, generator
 
 __all__ = ["GENERATORS", "CategoryGenerator", "generator"]

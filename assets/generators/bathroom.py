@@ -1,0 +1,3 @@
+"""bathroom generators."""
+
+from __future__ import annotations

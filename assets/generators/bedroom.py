@@ -1,0 +1,3 @@
+"""bedroom generators."""
+
+from __future__ import annotations

@@ -1,0 +1,3 @@
+"""electronics generators."""
+
+from __future__ import annotations

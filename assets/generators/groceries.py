@@ -1,0 +1,3 @@
+"""groceries generators."""
+
+from __future__ import annotations

@@ -1,0 +1,3 @@
+"""kitchenware generators."""
+
+from __future__ import annotations

@@ -1,0 +1,3 @@
+"""livingroom generators."""
+
+from __future__ import annotations

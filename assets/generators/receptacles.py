@@ -1,0 +1,3 @@
+"""receptacles generators."""
+
+from __future__ import annotations

@@ -1,0 +1,3 @@
+"""stationery generators."""
+
+from __future__ import annotations

@@ -1,0 +1,3 @@
+"""tools generators."""
+
+from __future__ import annotations
