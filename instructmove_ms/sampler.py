@@ -1,54 +1,148 @@
-"""Seeded role sampling: which catalog instances play the target and the distractors."""
+"""Seeded role sampling: which instances of a snapshot play which role in an episode.
+
+Roles are declared with constraints (match or differ on category, super_category, colour,
+shape, material, size or name, against another role or among the role's own members) and
+capability tags. Each slot takes, among the instances that satisfy every constraint, the one
+with the lowest hash of (seed, role, slot, uuid): rendezvous hashing, so the draw depends
+only on the seed and on which instances qualify, never on their order in the catalog.
+"""
 
 from __future__ import annotations
 
-import numpy as np
+import hashlib
+from dataclasses import dataclass
 
 from .assets.catalog import Catalog, Instance, is_held_out_category
 from .validation import check_choice
 
 SPLITS = ("train", "seen", "unseen_instance", "unseen_category")
+ATTRIBUTES = ("category", "super_category", "color", "shape", "material", "size", "name")
+TAGS = ("graspable", "container")
+EACH_OTHER = "each_other"
+
+
+@dataclass(frozen=True)
+class Constraint:
+    """``attribute`` must ``relation`` ("match" or "differ") that of role ``other``
+    (or of the role's other members when ``other`` is "each_other")."""
+
+    attribute: str
+    relation: str
+    other: str
+
+    def __post_init__(self) -> None:
+        check_choice("constraint attribute", self.attribute, ATTRIBUTES)
+        check_choice("constraint relation", self.relation, ("match", "differ"))
+
+    def __str__(self) -> str:
+        return f"{self.attribute} must {self.relation} {self.other}"
+
+
+@dataclass(frozen=True)
+class RoleSpec:
+    name: str
+    count: int
+    pool: str = "distractor"  # "target": the split's held-out pool; "distractor": seen assets
+    require: tuple[str, ...] = ("graspable",)
+    constraints: tuple[Constraint, ...] = ()
+
+    def __post_init__(self) -> None:
+        check_choice("role pool", self.pool, ("target", "distractor"))
+        for tag in self.require:
+            check_choice("capability tag", tag, TAGS)
+
+
+class RoleError(ValueError):
+    """No instance satisfies a role's constraints."""
+
+
+def split_of(inst: Instance) -> str:
+    """The partition an instance belongs to: seen, unseen_instance or unseen_category."""
+    if is_held_out_category(inst.category):
+        return "unseen_category"
+    return "unseen_instance" if inst.held_out else "seen"
 
 
 def split_pools(catalog: Catalog, split: str) -> tuple[list[Instance], list[Instance]]:
-    """(target pool, distractor pool) of graspable instances for ``split``.
+    """(target pool, distractor pool) of ``split``.
 
-    train / seen: seen categories, seen instances (seen differs from train by its held-out
-    episode seeds). unseen_instance: targets are held-out instances of seen categories.
-    unseen_category: targets come from held-out categories. Distractors always come from
-    seen categories and seen instances.
+    train / seen: seen instances (seen differs from train by its held-out episode seeds).
+    unseen_instance / unseen_category: targets from that partition. Distractors always come
+    from the seen partition.
     """
     check_choice("split", split, SPLITS)
-    graspable = [i for i in catalog.instances if i.is_graspable]
-    seen = [i for i in graspable if not is_held_out_category(i.category) and not i.held_out]
+    seen = [i for i in catalog.instances if split_of(i) == "seen"]
     if split in ("train", "seen"):
-        targets = seen
-    elif split == "unseen_instance":
-        targets = [i for i in graspable if not is_held_out_category(i.category) and i.held_out]
+        return seen, seen
+    return [i for i in catalog.instances if split_of(i) == split], seen
+
+
+def _values(inst: Instance, attribute: str) -> frozenset:
+    if attribute == "color":
+        return frozenset(inst.colors)
+    if attribute == "name":
+        return frozenset(inst.nouns)
+    return frozenset([getattr(inst, attribute)])
+
+
+def _names_clash(a: frozenset, b: frozenset) -> bool:
+    """True if a noun of one is a word sequence inside a noun of the other ("pen" in "marker
+    pen"), so that an instruction naming one could mean the other."""
+
+    def inside(x: str, y: str) -> bool:
+        return f" {x} " in f" {y} "
+
+    return any(inside(x, y) or inside(y, x) for x in a for y in b)
+
+
+def _holds(relation: str, attribute: str, mine: frozenset, theirs: frozenset) -> bool:
+    if attribute == "name":
+        same = _names_clash(mine, theirs)
     else:
-        targets = [i for i in graspable if is_held_out_category(i.category)]
-    return targets, seen
+        same = mine == theirs if relation == "match" else bool(mine & theirs)
+    return same if relation == "match" else not same
 
 
-def _pick(rng: np.random.Generator, items: list):
-    return items[int(rng.integers(len(items)))]
+def _satisfies(inst: Instance, c: Constraint, others: list[Instance]) -> bool:
+    mine = _values(inst, c.attribute)
+    return all(_holds(c.relation, c.attribute, mine, _values(o, c.attribute)) for o in others)
 
 
-def sample_cross_category(
-    rng: np.random.Generator, catalog: Catalog, split: str, num_distractors: int
-) -> tuple[Instance, list[Instance]]:
-    """A target and ``num_distractors`` distractors, all of pairwise different categories."""
-    targets, others = split_pools(catalog, split)
-    target = _pick(rng, targets)
-    by_category: dict[str, list[Instance]] = {}
-    for inst in others:
-        if inst.category != target.category:
-            by_category.setdefault(inst.category, []).append(inst)
-    categories = sorted(by_category)
-    if len(categories) < num_distractors:
-        raise ValueError(
-            f"split {split!r} of snapshot {catalog.name!r} has {len(categories)} distractor "
-            f"categories, fewer than num_distractors={num_distractors}"
-        )
-    chosen = rng.choice(len(categories), size=num_distractors, replace=False)
-    return target, [_pick(rng, by_category[categories[k]]) for k in chosen]
+def rank(seed: int, role: str, slot: int, uuid: str) -> int:
+    digest = hashlib.blake2b(f"{seed}:{role}:{slot}:{uuid}".encode(), digest_size=8).digest()
+    return int.from_bytes(digest, "little")
+
+
+def resolve_roles(
+    roles: tuple[RoleSpec, ...], catalog: Catalog, split: str, seed: int
+) -> dict[str, list[Instance]]:
+    """Assign instances to every role, in order; the same inputs give the same assignment."""
+    pools = dict(zip(("target", "distractor"), split_pools(catalog, split), strict=True))
+    assigned: dict[str, list[Instance]] = {}
+    used: set[str] = set()
+    for role in roles:
+        pool = [
+            i
+            for i in pools[role.pool]
+            if all(getattr(i, f"is_{tag}") for tag in role.require) and i.uuid not in used
+        ]
+        members: list[Instance] = []
+        for slot in range(role.count):
+            candidates = pool
+            for c in role.constraints:
+                others = members if c.other == EACH_OTHER else assigned.get(c.other)
+                if others is None:
+                    raise ValueError(f"role {role.name!r} refers to unknown role {c.other!r}")
+                candidates = [i for i in candidates if _satisfies(i, c, others)]
+                if not candidates:
+                    raise RoleError(
+                        f"role {role.name!r} slot {slot}: no instance satisfies '{c}' in "
+                        f"snapshot {catalog.name!r}, split {split!r} (pool of {len(pool)} "
+                        f"with tags {list(role.require)})"
+                    )
+            choice = min(candidates, key=lambda i: rank(seed, role.name, slot, i.uuid))
+            members.append(choice)
+            used.add(choice.uuid)
+            pool = [i for i in pool if i.uuid != choice.uuid]
+        assigned[role.name] = members
+    return assigned

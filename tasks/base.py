@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from typing import Any, ClassVar
 
@@ -20,7 +21,7 @@ from instructmove_ms.assets.sapien_builder import actor_builder
 from instructmove_ms.episode import EpisodeSpec, ObjectSpec
 from instructmove_ms.language import noun_phrase, render
 from instructmove_ms.layout import sample_layout
-from instructmove_ms.sampler import SPLITS, sample_cross_category
+from instructmove_ms.sampler import SPLITS, resolve_roles
 from instructmove_ms.stages import box_distance, first_index, latch_first
 from instructmove_ms.validation import check_choice, check_range
 
@@ -56,12 +57,16 @@ class InstructMoveEnv(BaseEnv):
         check_choice("robot_uids", robot_uids, self.task.supported_robots)
         check_choice("split", split, SPLITS)
         if num_distractors is None:
-            num_distractors = self.task.composition["distractor"]
+            num_distractors = self.task.role("distractor").count
         check_range("num_distractors", num_distractors, *self.task.count_limits["distractor"])
         if not robot_init_qpos_noise >= 0:
             raise ValueError(f"robot_init_qpos_noise must be >= 0, got {robot_init_qpos_noise!r}")
         self.split = split
         self.num_distractors = num_distractors
+        self._roles = tuple(
+            dataclasses.replace(r, count=num_distractors) if r.name == "distractor" else r
+            for r in self.task.roles
+        )
         self.robot_init_qpos_noise = float(robot_init_qpos_noise)
         self.catalog = load_snapshot(snapshot)
         self.episodes: list[EpisodeSpec] = []
@@ -120,11 +125,9 @@ class InstructMoveEnv(BaseEnv):
             raise ValueError("all sub-scenes must hold the same number of objects")
         return specs
 
-    def _sample_roles(self, rng: np.random.Generator) -> list[tuple[Instance, str]]:
-        target, distractors = sample_cross_category(
-            rng, self.catalog, self.split, self.num_distractors
-        )
-        return [(target, "target"), *((d, "distractor") for d in distractors)]
+    def _sample_roles(self, seed: int) -> list[tuple[Instance, str]]:
+        assigned = resolve_roles(self._roles, self.catalog, self.split, seed)
+        return [(inst, role) for role, members in assigned.items() for inst in members]
 
     def _render_instruction(self, rng: np.random.Generator, target: Instance) -> str:
         return render(rng, self.task.templates, target=noun_phrase(rng, target))
@@ -132,7 +135,7 @@ class InstructMoveEnv(BaseEnv):
     def sample_episode(self, seed: int) -> EpisodeSpec:
         """The episode of ``seed``: objects, layout, robot joints and instruction."""
         rng = np.random.default_rng(seed)
-        roles = self._sample_roles(rng)
+        roles = self._sample_roles(seed)
         roles = [roles[k] for k in rng.permutation(len(roles))]
         halves = []
         for inst, _ in roles:

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 from mani_skill.utils.registration import register_env
 
+from instructmove_ms.sampler import EACH_OTHER, Constraint, RoleSpec
+
 from .base import InstructMoveEnv
 from .spec import TaskSpec
 
@@ -12,7 +14,18 @@ PICK_CATEGORY = TaskSpec(
     family="pick_category",
     default_robot="franka",
     supported_robots=("franka",),
-    composition={"target": 1, "distractor": 5},
+    roles=(
+        RoleSpec("target", 1, pool="target"),
+        RoleSpec(
+            "distractor",
+            5,
+            constraints=(
+                Constraint("category", "differ", "target"),
+                Constraint("category", "differ", EACH_OTHER),
+                Constraint("name", "differ", "target"),
+            ),
+        ),
+    ),
     count_limits={"distractor": (1, 5)},
     templates=(
         "pick up the {target}",

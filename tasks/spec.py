@@ -5,6 +5,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 from instructmove_ms.layout import Workspace
+from instructmove_ms.sampler import RoleSpec
 
 
 @dataclass(frozen=True)
@@ -30,10 +31,13 @@ class TaskSpec:
     family: str
     default_robot: str
     supported_robots: tuple[str, ...]
-    composition: dict[str, int]  # role -> default count
-    count_limits: dict[str, tuple[int, int]]  # role -> allowed (min, max)
+    roles: tuple[RoleSpec, ...]  # who is in the scene, with default counts and constraints
+    count_limits: dict[str, tuple[int, int]]  # role -> allowed (min, max) count
     templates: tuple[str, ...]
     max_episode_steps: int = 300
     clearance: float = 0.05
     workspace: Workspace = field(default_factory=Workspace)
     thresholds: Thresholds = field(default_factory=Thresholds)
+
+    def role(self, name: str) -> RoleSpec:
+        return next(r for r in self.roles if r.name == name)
