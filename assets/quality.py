@@ -8,11 +8,13 @@ from dataclasses import dataclass, field
 import numpy as np
 import sapien.physx as physx
 
+from .affordances import grasp_affordances
 from .catalog import Instance
 from .generators import GENERATORS
 from .sim import TIMESTEP, spawn, table_scene
 
 SETTLE_SECONDS = 1.5
+GRIPPER_OPENING = 0.08  # the Franka's; the PiperX opens to 0.1 m
 MAX_DRIFT = 0.01  # metres in xy
 MAX_TILT = math.radians(10.0)  # resting on a rounded end tilts a little
 
@@ -39,6 +41,8 @@ def check_geometry(inst: Instance) -> list[str]:
     largest = max(inst.dims)
     if not low <= largest <= high:
         failures.append(f"largest dimension {largest:.3f} m outside prior [{low}, {high}]")
+    if inst.is_graspable and not grasp_affordances(inst, GRIPPER_OPENING):
+        failures.append(f"graspable but no top-down grasp for a {GRIPPER_OPENING} m gripper")
     if inst.is_container:
         region = inst.interior
         if region is None or min(region.half) <= 0 or region.height <= 0:

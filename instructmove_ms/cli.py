@@ -36,14 +36,61 @@ def _cmd_episode(args: argparse.Namespace) -> int:
     return 0
 
 
-def _cmd_assets(args: argparse.Namespace) -> int:
+def _assets(args: argparse.Namespace) -> list:
     from instructmove_ms.assets import load_snapshot
 
     catalog = load_snapshot(args.snapshot)
-    for inst in catalog.instances:
-        if args.category and inst.category != args.category:
-            continue
-        print(json.dumps(inst.annotation()))
+    return [i for i in catalog.instances if not args.category or i.category == args.category]
+
+
+def _cmd_assets_list(args: argparse.Namespace) -> int:
+    from instructmove_ms.assets.annotations import annotate
+    from instructmove_ms.sampler import split_of
+
+    for inst in _assets(args):
+        record = annotate(inst, split_of(inst))
+        if args.format == "jsonl":
+            print(json.dumps(record))
+        else:
+            print(
+                f"{inst.uuid}  {inst.category:18s} {'/'.join(inst.colors):18s} "
+                f"{inst.material:9s} {inst.height * 100:5.1f} cm  {record['split']}"
+            )
+    return 0
+
+
+def _cmd_assets_check(args: argparse.Namespace) -> int:
+    from tqdm import tqdm
+
+    from instructmove_ms.assets.quality import check_instances
+
+    instances = _assets(args)
+    by_category: dict[str, list] = {}
+    for inst in instances:
+        by_category.setdefault(inst.category, []).append(inst)
+    failed = 0
+    for category in tqdm(sorted(by_category), desc="checking", unit="category"):
+        for result in check_instances(by_category[category]):
+            if not result.ok:
+                failed += 1
+                tqdm.write(f"FAIL {result.category} {result.uuid}: {'; '.join(result.failures)}")
+    print(f"{len(instances) - failed}/{len(instances)} instances pass the quality checks")
+    return 1 if failed else 0
+
+
+def _cmd_assets_sheet(args: argparse.Namespace) -> int:
+    from pathlib import Path
+
+    from tqdm import tqdm
+
+    from instructmove_ms.assets.sheet import contact_sheet
+
+    groups: dict[str, list] = {}
+    for inst in _assets(args):
+        groups.setdefault(inst.super_category, []).append(inst)
+    for name in tqdm(sorted(groups), desc="contact sheets", unit="sheet"):
+        path = contact_sheet(groups[name], Path(args.out) / f"{name}.png")
+        tqdm.write(str(path))
     return 0
 
 
@@ -59,10 +106,22 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--seed", type=int, default=0)
     p.add_argument("--no-render", action="store_true", help="build the scene without a renderer")
     p.set_defaults(func=_cmd_episode)
-    p = sub.add_parser("assets", help="print the annotations of a snapshot, one JSON per line")
-    p.add_argument("--snapshot", default="default")
-    p.add_argument("--category", default=None)
-    p.set_defaults(func=_cmd_assets)
+    assets = sub.add_parser("assets", help="the object library").add_subparsers(
+        dest="assets_command", required=True
+    )
+    for name, func, text in (
+        ("list", _cmd_assets_list, "print every asset with its annotations"),
+        ("check", _cmd_assets_check, "run the quality checks (geometry, size, settling, grasps)"),
+        ("sheet", _cmd_assets_sheet, "write a labelled contact sheet PNG per super-category"),
+    ):
+        p = assets.add_parser(name, help=text)
+        p.add_argument("--snapshot", default="default")
+        p.add_argument("--category", default=None, help="only this category")
+        p.set_defaults(func=func)
+        if name == "list":
+            p.add_argument("--format", choices=("table", "jsonl"), default="table")
+        if name == "sheet":
+            p.add_argument("--out", default="out/sheets", help="folder for the PNGs")
     return parser
 
 
@@ -70,6 +129,9 @@ def main(argv: list[str] | None = None) -> int:
     args = build_parser().parse_args(argv)
     try:
         return args.func(args)
+    except BrokenPipeError:  # output piped into a reader that stopped (head, less)
+        sys.stderr.close()
+        return 0
     except (ValueError, KeyError) as exc:
         print(f"instructmove: error: {exc}", file=sys.stderr)
         return 2

@@ -17,10 +17,27 @@ def test_episode_prints_the_seeds_spec(capsys):
 def test_envs_and_assets_list_what_is_registered(capsys):
     assert main(["envs"]) == 0
     assert "PickCategory-InstructMove" in capsys.readouterr().out
-    assert main(["assets", "--category", "mug"]) == 0
+    assert main(["assets", "list", "--category", "mug", "--format", "jsonl"]) == 0
     rows = [json.loads(line) for line in capsys.readouterr().out.splitlines()]
     assert len(rows) == 10 and {r["category"] for r in rows} == {"mug"}
     assert all(r["is_container"] for r in rows)
+    required = {
+        "uuid",
+        "domain",
+        "super_category",
+        "category",
+        "colors",
+        "shape",
+        "material",
+        "height",
+        "is_graspable",
+        "is_container",
+        "split",
+        "grasps",
+        "expressions",
+    }
+    assert required <= set(rows[0])
+    assert all(r["grasps"] and len(r["expressions"]["seen"]) >= 5 for r in rows)
 
 
 def test_bad_split_is_a_clear_error(capsys):

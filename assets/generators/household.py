@@ -54,7 +54,7 @@ def wrench(d: Design) -> Traits:
     color = d.choice(["silver", "silver", "gray", "black"])
     length = d.uniform(0.14, 0.2)
     w = d.uniform(0.014, 0.018)
-    t = 0.006
+    t = d.uniform(0.008, 0.011)
     d.box("handle", (length / 2 - 0.02, w / 2, t / 2), (0, 0, t / 2), "metal", color)
     head_x = length / 2 - 0.014
     for k, sign in enumerate((-1, 1)):

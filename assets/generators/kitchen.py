@@ -5,6 +5,7 @@ from __future__ import annotations
 import math
 
 from ..design import Design, Traits
+from ..parts import axis_angle_quat
 from .registry import generator
 
 CERAMIC_COLORS = ["white", "white", "blue", "red", "green", "yellow", "black", "beige", "pink"]
@@ -57,14 +58,25 @@ def spice_jar(d: Design) -> Traits:
 
 
 def _cutlery_handle(d: Design, colors: list[str], length: tuple[float, float], z: float):
-    """The handle of a spoon or fork along x; returns (material, colour, head start, head)."""
+    """The handle of a spoon or fork along x, its end raised off the table as a real one
+    rests on its head and handle tip; returns (material, colour, head start, head length)."""
     color = d.choice(colors)
     material = "metal" if color == "silver" else "plastic"
     total = d.uniform(*length)
     head = total * 0.3
     handle = total - head
     x0 = -total / 2
-    d.box("handle", (handle / 2, 0.006, 0.0018), (x0 + handle / 2, 0, z), material, color)
+    pitch = d.uniform(0.1, 0.16)
+    rise = math.sin(pitch) * handle / 2
+    d.add(
+        "handle",
+        "box",
+        (handle / 2, 0.006, 0.0018),
+        (x0 + handle / 2, 0, z + rise),
+        material,
+        color,
+        quat=axis_angle_quat((0, 1, 0), pitch),
+    )
     return material, color, x0 + handle, head
 
 

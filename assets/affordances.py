@@ -1,0 +1,129 @@
+"""Grasp affordances for a parallel gripper, computed from an instance's convex parts.
+
+Each collision part offers top-down grasps at its top: the fingers close along a horizontal
+axis of the part's cross-section. A grasp is kept when the part's width along that axis fits
+the gripper's opening, the grasp centre is high enough for the fingertips to clear the table,
+and no other part rises above the grasp inside the fingers' column.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from .catalog import Instance
+from .parts import Part, quat_to_matrix
+
+DOWN = (0.0, 0.0, -1.0)
+MARGIN = 0.005  # free opening left on each side of a grasp, metres
+FINGER_DEPTH = 0.02  # how far below a part's top the grasp centre goes at most
+MIN_HEIGHT = 0.004  # grasp centres lower than this would put the fingertips into the table
+FINGER_HALF_WIDTH = 0.012
+PALM_HEIGHT = 0.045  # the palm sits this far above the grasp centre
+MIN_PART_HEIGHT = 0.004  # thinner parts (a pull tab) give the fingers nothing to hold
+
+
+@dataclass(frozen=True)
+class Grasp:
+    """A grasp in the object frame: the TCP goes to ``center`` moving along ``approach`` and
+    the fingers close along ``closing``; ``width`` is the object's width between them."""
+
+    center: tuple[float, float, float]
+    approach: tuple[float, float, float]
+    closing: tuple[float, float, float]
+    width: float
+
+    @property
+    def yaw(self) -> float:
+        """Rotation about z of the closing axis (the gripper's finger axis)."""
+        return math.atan2(self.closing[1], self.closing[0])
+
+
+def _horizontal_widths(part: Part) -> list[tuple[np.ndarray, float]]:
+    """(unit horizontal axis, width of the part's horizontal cross-section along it)."""
+    rot = quat_to_matrix(part.quat)
+    s = part.size
+    if part.shape == "sphere":
+        return [(np.array([1.0, 0.0, 0.0]), 2 * s[0]), (np.array([0.0, 1.0, 0.0]), 2 * s[0])]
+    if part.shape in ("box", "ellipsoid"):
+        axes = [(rot[:, k], 2 * s[k]) for k in range(3)]
+    else:  # cylinder or capsule along local x: round cross-section in local y-z
+        length = 2 * (s[1] + s[0]) if part.shape == "capsule" else 2 * s[1]
+        axes = [(rot[:, 1], 2 * s[0]), (rot[:, 2], 2 * s[0]), (rot[:, 0], length)]
+    out = []
+    for axis, width in axes:
+        tilt = math.asin(min(1.0, abs(float(axis[2]))))
+        if tilt < math.radians(45):  # a slanted wall is cut wider at a fixed height
+            flat = np.array([axis[0], axis[1], 0.0])
+            out.append((flat / np.linalg.norm(flat), float(width) / math.cos(tilt)))
+    return out
+
+
+def section_center(part: Part, z: float) -> np.ndarray:
+    """Centre of the part's horizontal cross-section at height ``z`` (a slanted wall's
+    section moves sideways with height)."""
+    rot = quat_to_matrix(part.quat)
+    k = int(np.argmax(np.abs(rot[2])))
+    slope = rot[:, k] / rot[2, k]
+    return np.asarray(part.pos) + slope * (z - part.pos[2])
+
+
+def contains(part: Part, points: np.ndarray) -> np.ndarray:
+    """Which of ``points`` (M, 3), in the object frame, lie inside ``part``."""
+    local = (points - np.asarray(part.pos)) @ quat_to_matrix(part.quat)
+    s = part.size
+    if part.shape == "box":
+        return np.all(np.abs(local) <= np.asarray(s), axis=1)
+    if part.shape == "sphere":
+        return np.linalg.norm(local, axis=1) <= s[0]
+    if part.shape == "ellipsoid":
+        return np.sum((local / np.asarray(s)) ** 2, axis=1) <= 1.0
+    radial = np.linalg.norm(local[:, 1:], axis=1)
+    if part.shape == "cylinder":
+        return (np.abs(local[:, 0]) <= s[1]) & (radial <= s[0])
+    along = np.clip(np.abs(local[:, 0]) - s[1], 0.0, None)  # capsule
+    return np.hypot(along, radial) <= s[0]
+
+
+def _blocked(
+    part: Part, top: float, z: float, axis: np.ndarray, width: float, solids: list[Part]
+) -> bool:
+    """A finger or the palm would be inside another part: sample the finger pads beside the
+    grasped part and the palm above the grasp."""
+    normal = np.array([-axis[1], axis[0], 0.0])
+    center = section_center(part, z)
+    pads = [
+        center + a * axis * (width / 2 + 0.006) + b * normal + np.array([0, 0, h])
+        for a in (-1, 1)
+        for b in (-0.5 * FINGER_HALF_WIDTH, 0.0, 0.5 * FINGER_HALF_WIDTH)
+        for h in (0.0, (top - z) / 2)
+    ]
+    palm = [
+        center + a * axis * (width / 2) + b * normal + np.array([0, 0, PALM_HEIGHT])
+        for a in (-1, 0, 1)
+        for b in (-FINGER_HALF_WIDTH, 0.0, FINGER_HALF_WIDTH)
+    ]
+    points = np.array(pads + palm)
+    return any(contains(other, points).any() for other in solids if other is not part)
+
+
+def grasp_affordances(inst: Instance, max_opening: float = 0.08) -> list[Grasp]:
+    """Top-down grasps of ``inst`` for a gripper opening at most ``max_opening`` metres,
+    highest first."""
+    solids = [p for p in inst.parts if not p.visual_only]
+    grasps = []
+    for part in solids:
+        lo, hi = part.bounds()
+        top, height = float(hi[2]), float(hi[2] - lo[2])
+        z = top - min(FINGER_DEPTH, height / 2)
+        if z < MIN_HEIGHT or height < MIN_PART_HEIGHT:
+            continue
+        for axis, width in _horizontal_widths(part):
+            if 0.003 <= width <= max_opening - 2 * MARGIN and not _blocked(
+                part, top, z, axis, width, solids
+            ):
+                center = tuple(float(v) for v in section_center(part, z))
+                grasps.append(Grasp(center, DOWN, tuple(float(v) for v in axis), width))
+    return sorted(grasps, key=lambda g: (-g.center[2], g.width))
