@@ -5,11 +5,16 @@ from __future__ import annotations
 import numpy as np
 
 from .assets.catalog import Instance
+from .assets.expressions import expressions
+
+UNSEEN_SPLITS = ("unseen_instance", "unseen_category")
 
 
-def noun_phrase(rng: np.random.Generator, instance: Instance) -> str:
-    """A category-level referring expression: one of the category's nouns."""
-    return instance.nouns[int(rng.integers(len(instance.nouns)))]
+def referring_expression(rng: np.random.Generator, instance: Instance, split: str) -> str:
+    """A phrase for ``instance`` from its seen pool, or its unseen pool on unseen splits."""
+    seen, unseen = expressions(instance)
+    pool = unseen if split in UNSEEN_SPLITS and unseen else seen
+    return pool[int(rng.integers(len(pool)))]
 
 
 def render(rng: np.random.Generator, templates: tuple[str, ...], **slots: str) -> str:

@@ -19,7 +19,7 @@ from mani_skill.utils.structs.types import SimConfig
 from instructmove_ms.assets.catalog import DEFAULT_SNAPSHOT, Instance, load_snapshot
 from instructmove_ms.assets.sapien_builder import actor_builder
 from instructmove_ms.episode import EpisodeSpec, ObjectSpec
-from instructmove_ms.language import noun_phrase, render
+from instructmove_ms.language import referring_expression, render
 from instructmove_ms.layout import sample_layout
 from instructmove_ms.sampler import SPLITS, resolve_roles
 from instructmove_ms.stages import box_distance, first_index, latch_first
@@ -130,7 +130,9 @@ class InstructMoveEnv(BaseEnv):
         return [(inst, role) for role, members in assigned.items() for inst in members]
 
     def _render_instruction(self, rng: np.random.Generator, target: Instance) -> str:
-        return render(rng, self.task.templates, target=noun_phrase(rng, target))
+        return render(
+            rng, self.task.templates, target=referring_expression(rng, target, self.split)
+        )
 
     def sample_episode(self, seed: int) -> EpisodeSpec:
         """The episode of ``seed``: objects, layout, robot joints and instruction."""
