@@ -47,7 +47,7 @@ def _horizontal_widths(part: Part) -> list[tuple[np.ndarray, float]]:
     s = part.size
     if part.shape == "sphere":
         return [(np.array([1.0, 0.0, 0.0]), 2 * s[0]), (np.array([0.0, 1.0, 0.0]), 2 * s[0])]
-    if part.shape in ("box", "ellipsoid"):
+    if part.shape in ("box", "ellipsoid", "mesh"):
         axes = [(rot[:, k], 2 * s[k]) for k in range(3)]
     else:  # cylinder or capsule along local x: round cross-section in local y-z
         length = 2 * (s[1] + s[0]) if part.shape == "capsule" else 2 * s[1]
@@ -74,7 +74,7 @@ def contains(part: Part, points: np.ndarray) -> np.ndarray:
     """Which of ``points`` (M, 3), in the object frame, lie inside ``part``."""
     local = (points - np.asarray(part.pos)) @ quat_to_matrix(part.quat)
     s = part.size
-    if part.shape == "box":
+    if part.shape in ("box", "mesh"):  # a mesh piece counts as its bounding box
         return np.all(np.abs(local) <= np.asarray(s), axis=1)
     if part.shape == "sphere":
         return np.linalg.norm(local, axis=1) <= s[0]

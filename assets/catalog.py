@@ -5,7 +5,7 @@ from __future__ import annotations
 import hashlib
 import uuid as uuidlib
 from collections.abc import Iterable
-from dataclasses import dataclass, field
+from dataclasses import asdict, dataclass, field
 from functools import cache
 from importlib import resources
 
@@ -19,8 +19,6 @@ from .vocab import material_word
 
 #: Namespace of instance uuids: uuid5(NAMESPACE, "<category>/<index>") never changes.
 UUID_NAMESPACE = uuidlib.UUID("6f1c1c9e-3d52-4c55-9c55-6a1e0b1c7a01")
-DEFAULT_SNAPSHOT = "default"
-INSTANCES_PER_CATEGORY = 10
 #: About one instance in five is held out for the unseen_instance split, one category in
 #: five for unseen_category; both decided by a hash so that growth keeps them stable.
 HELD_OUT_MODULUS = 5
@@ -100,6 +98,37 @@ class Instance:
     def held_out(self) -> bool:
         """True for the instances reserved for the unseen_instance split."""
         return _stable_bucket(f"instance/{self.uuid}") == 0
+
+    def to_record(self) -> dict:
+        """Everything that defines the instance, as JSON-ready data (see ``from_record``)."""
+        record = asdict(self)
+        record["parts"] = [asdict(p) for p in self.parts]
+        return record
+
+    @classmethod
+    def from_record(cls, record: dict) -> Instance:
+        fields = dict(record)
+        fields["parts"] = tuple(
+            Part(
+                **{
+                    **p,
+                    "size": tuple(p["size"]),
+                    "pos": tuple(p["pos"]),
+                    "quat": tuple(p["quat"]),
+                    "rgb": tuple(p["rgb"]),
+                }
+            )
+            for p in record["parts"]
+        )
+        for key in ("colors", "nouns"):
+            fields[key] = tuple(record[key])
+        interior = record.get("interior")
+        fields["interior"] = (
+            None
+            if interior is None
+            else Region(tuple(interior["center"]), tuple(interior["half"]), interior["height"])
+        )
+        return cls(**fields)
 
     def annotation(self) -> dict:
         """The instance's annotation record, as stored in catalog exports."""
@@ -191,18 +220,3 @@ class Catalog:
 
     def of_category(self, category: str) -> list[Instance]:
         return list(self._by_category.get(category, []))
-
-
-@cache
-def load_snapshot(name: str = DEFAULT_SNAPSHOT) -> Catalog:
-    """The embedded snapshot: every registered category, ``INSTANCES_PER_CATEGORY`` each."""
-    if name != DEFAULT_SNAPSHOT:
-        raise ValueError(f"unknown snapshot {name!r}; allowed: [{DEFAULT_SNAPSHOT!r}]")
-    return Catalog(
-        name,
-        (
-            generate_instance(cat, i)
-            for cat in sorted(GENERATORS)
-            for i in range(INSTANCES_PER_CATEGORY)
-        ),
-    )

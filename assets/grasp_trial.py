@@ -122,6 +122,7 @@ def grasp_trial(instances: list[Instance], max_tries: int = 3) -> list[TrialResu
     scene = table_scene()
     gripper = FloatingGripper(scene)
     parked = gripper.pose_qpos(np.array([0.0, 0.0, 1.0]), 0.0, OPEN)
+    gripper.teleport(parked)  # out of the way before the first object spawns
     results = []
     for inst in instances:
         if not inst.is_graspable:

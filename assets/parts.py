@@ -11,8 +11,16 @@ from .vocab import COLORS, MATERIALS
 
 #: shape -> number of size parameters. Cylinders and capsules run along the local x axis
 #: (SAPIEN's convention); ``size`` is (radius, half_length). Boxes: half extents.
-#: Ellipsoids: semi-axes (convex hull of a scaled unit icosphere).
-PRIMITIVES: dict[str, int] = {"box": 3, "sphere": 1, "cylinder": 2, "capsule": 2, "ellipsoid": 3}
+#: Ellipsoids: semi-axes (convex hull of a scaled unit icosphere). Meshes (imported assets):
+#: half extents of the piece, whose OBJ file ``mesh`` is centred on ``pos``.
+PRIMITIVES: dict[str, int] = {
+    "box": 3,
+    "sphere": 1,
+    "cylinder": 2,
+    "capsule": 2,
+    "ellipsoid": 3,
+    "mesh": 3,
+}
 
 
 @dataclass(frozen=True)
@@ -29,6 +37,8 @@ class Part:
     rgb: tuple[float, float, float]
     solid_fraction: float = 1.0  # < 1 for hollow or filled parts (a can, a bottle)
     visual_only: bool = False  # decoration (a label, a print): no collision, no mass
+    mesh: str = ""  # OBJ file of a "mesh" part
+    mesh_volume: float = 0.0  # volume of a "mesh" part's convex piece
 
     def __post_init__(self) -> None:
         if self.shape not in PRIMITIVES:
@@ -39,6 +49,8 @@ class Part:
             raise ValueError(f"unknown material {self.material!r}; allowed: {sorted(MATERIALS)}")
         if self.color not in COLORS:
             raise ValueError(f"unknown colour {self.color!r}; allowed: {sorted(COLORS)}")
+        if (self.shape == "mesh") != bool(self.mesh):
+            raise ValueError(f"part {self.name!r}: a mesh file goes with the 'mesh' shape only")
 
     @property
     def volume(self) -> float:
@@ -51,6 +63,8 @@ class Part:
             return math.pi * s[0] ** 2 * 2.0 * s[1]
         if self.shape == "capsule":
             return math.pi * s[0] ** 2 * 2.0 * s[1] + 4.0 / 3.0 * math.pi * s[0] ** 3
+        if self.shape == "mesh":
+            return self.mesh_volume
         return 4.0 / 3.0 * math.pi * s[0] * s[1] * s[2]
 
     @property
@@ -64,7 +78,7 @@ class Part:
     def local_half_extents(self) -> np.ndarray:
         """Half extents of the part's own axis-aligned box, before its pose."""
         s = self.size
-        if self.shape in ("box", "ellipsoid"):
+        if self.shape in ("box", "ellipsoid", "mesh"):
             return np.array(s, dtype=float)
         if self.shape == "sphere":
             return np.full(3, s[0])

@@ -37,10 +37,10 @@ def check_geometry(inst: Instance) -> list[str]:
         failures.append("no collision part")
     if inst.mass <= 0:
         failures.append(f"mass {inst.mass}")
-    low, high = GENERATORS[inst.category].size
+    prior = GENERATORS.get(inst.category)  # imported categories may have no prior
     largest = max(inst.dims)
-    if not low <= largest <= high:
-        failures.append(f"largest dimension {largest:.3f} m outside prior [{low}, {high}]")
+    if prior and not prior.size[0] <= largest <= prior.size[1]:
+        failures.append(f"largest dimension {largest:.3f} m outside prior {list(prior.size)}")
     if inst.is_graspable and not grasp_affordances(inst, GRIPPER_OPENING):
         failures.append(f"graspable but no top-down grasp for a {GRIPPER_OPENING} m gripper")
     if inst.is_container:

@@ -49,6 +49,8 @@ def add_part(builder: sapien.ActorBuilder, part: Part) -> None:
         builder.add_cylinder_visual(pose, radius=s[0], half_length=s[1], material=mat)
     elif part.shape == "capsule":
         builder.add_capsule_visual(pose, radius=s[0], half_length=s[1], material=mat)
+    elif part.shape == "mesh":
+        builder.add_visual_from_file(part.mesh, pose, material=mat)
     else:
         builder.add_visual_from_file(_unit_sphere_mesh(), pose, scale=s, material=mat)
     if part.visual_only:
@@ -62,6 +64,8 @@ def add_part(builder: sapien.ActorBuilder, part: Part) -> None:
         builder.add_cylinder_collision(pose, radius=s[0], half_length=s[1], **kw)
     elif part.shape == "capsule":
         builder.add_capsule_collision(pose, radius=s[0], half_length=s[1], **kw)
+    elif part.shape == "mesh":
+        builder.add_convex_collision_from_file(part.mesh, pose, **kw)
     else:
         builder.add_convex_collision_from_file(_unit_sphere_mesh(), pose, scale=s, **kw)
 

@@ -94,6 +94,41 @@ def _cmd_assets_sheet(args: argparse.Namespace) -> int:
     return 0
 
 
+def _cmd_assets_build(args: argparse.Namespace) -> int:
+    from tqdm import tqdm
+
+    from instructmove_ms.assets import snapshot as snap
+    from instructmove_ms.assets.generators import GENERATORS
+
+    categories = sorted(GENERATORS)
+    entries = []
+    for category in tqdm(categories, desc="generating", unit="category"):
+        entries += snap.build_entries([category], args.per_category)
+    folder = (
+        snap.package_snapshot_dir()
+        if args.name == snap.DEFAULT_SNAPSHOT
+        else snap.user_snapshot_dir()
+    )
+    path = snap.write_snapshot(folder / f"{args.name}.json", args.name, entries)
+    print(
+        f"snapshot {args.name!r}: {len(entries)} instances of {len(categories)} categories "
+        f"-> {path}"
+    )
+    return 0
+
+
+def _cmd_assets_import(args: argparse.Namespace) -> int:
+    from pathlib import Path
+
+    from instructmove_ms.assets.snapshot import import_folder
+
+    path, rejected = import_folder(Path(args.source), args.name, args.extend or None)
+    for asset_id, failures in rejected:
+        print(f"left out {asset_id}: {'; '.join(failures)}", file=sys.stderr)
+    print(f"snapshot {args.name!r} -> {path} ({len(rejected)} assets left out)")
+    return 1 if rejected else 0
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(prog="instructmove", description=__doc__)
     sub = parser.add_subparsers(dest="command", required=True)
@@ -109,6 +144,17 @@ def build_parser() -> argparse.ArgumentParser:
     assets = sub.add_parser("assets", help="the object library").add_subparsers(
         dest="assets_command", required=True
     )
+    p = assets.add_parser("build", help="generate the library and freeze it as a snapshot")
+    p.add_argument("--name", default="default", help="snapshot name (default: the shipped one)")
+    p.add_argument("--per-category", type=int, default=10)
+    p.set_defaults(func=_cmd_assets_build)
+    p = assets.add_parser("import", help="import a folder of meshes + metadata.json")
+    p.add_argument("source", help="folder with metadata.json and the mesh files")
+    p.add_argument("--name", required=True, help="name of the new snapshot")
+    p.add_argument(
+        "--extend", default="default", help="snapshot to add the assets to ('' for none)"
+    )
+    p.set_defaults(func=_cmd_assets_import)
     for name, func, text in (
         ("list", _cmd_assets_list, "print every asset with its annotations"),
         ("check", _cmd_assets_check, "run the quality checks (geometry, size, settling, grasps)"),

@@ -16,7 +16,8 @@ from mani_skill.utils.structs.actor import Actor
 from mani_skill.utils.structs.pose import Pose
 from mani_skill.utils.structs.types import SimConfig
 
-from instructmove_ms.assets.catalog import DEFAULT_SNAPSHOT, Instance, load_snapshot
+from instructmove_ms.assets import DEFAULT_SNAPSHOT, load_snapshot
+from instructmove_ms.assets.catalog import Instance
 from instructmove_ms.assets.sapien_builder import actor_builder
 from instructmove_ms.episode import EpisodeSpec, ObjectSpec
 from instructmove_ms.language import referring_expression, render

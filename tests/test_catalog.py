@@ -14,12 +14,25 @@ from instructmove_ms.assets.vocab import COLORS, SHAPES
 from instructmove_ms.sampler import split_pools
 
 
-def test_at_least_twelve_taxonomy_categories_with_ten_instances():
+def test_every_taxonomy_category_and_the_receptacles_have_ten_instances():
     catalog = load_snapshot()
-    assert len(catalog.categories) >= 12
+    assert set(catalog.categories) == set(taxonomy())
+    domains = {taxonomy()[c].domain for c in catalog.categories}
+    assert len(domains) == 8  # the paper's 7 domains and our receptacles
+    paper = [c for c in catalog.categories if taxonomy()[c].domain != "receptacles"]
+    assert len(paper) == 103
+    receptacles = [c for c in catalog.categories if GENERATORS[c].container]
+    assert len(receptacles) >= 20
     for cat in catalog.categories:
-        assert cat in taxonomy()
         assert len(catalog.of_category(cat)) >= 10
+
+
+def test_the_shipped_snapshot_is_up_to_date_with_the_generators():
+    """A generator change must come with a rebuilt snapshot (`instructmove assets build`)."""
+    catalog = load_snapshot()
+    assert {i.category for i in catalog.instances} == set(GENERATORS)
+    for inst in catalog.instances:
+        assert generate_instance(inst.category, inst.index) == inst
 
 
 def test_generation_is_deterministic_and_uuids_stable():

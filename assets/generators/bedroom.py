@@ -1,3 +1,358 @@
-"""bedroom generators."""
+"""Bedroom storage and small electronics."""
 
 from __future__ import annotations
+
+import math
+
+from ..design import Design, Traits
+from ..parts import X_TO_Y, axis_angle_quat
+from .kitchenware import open_box
+from .registry import generator
+from .stationery import hex_rod
+
+
+def _open_lid(
+    d: Design, name, half_x, half_h, thick, hinge, material, color, tilt=0.2, mirror=False
+) -> None:
+    """A lid hinged along x at ``hinge`` (x, y, z), opened upright and leaning back (-y),
+    with a mirror on its inner face if ``mirror``."""
+    x, y, z = hinge
+    quat = axis_angle_quat((1, 0, 0), tilt)
+    pos = (x, y - half_h * math.sin(tilt), z + half_h * math.cos(tilt))
+    d.add(name, "box", (half_x, thick / 2, half_h), pos, material, color, quat=quat)
+    if mirror:
+        out = thick / 2 + 0.0005
+        pos = (x, pos[1] + out * math.cos(tilt), pos[2] + out * math.sin(tilt))
+        d.add(
+            "mirror",
+            "box",
+            (half_x * 0.75, 0.0005, half_h * 0.7),
+            pos,
+            "glass",
+            "silver",
+            quat=quat,
+            visual_only=True,
+        )
+
+
+@generator(
+    "storage_box",
+    size=(0.22, 0.4),
+    synonyms=("storage box", "storage bin", "storage container"),
+    graspable=False,
+    container=True,
+)
+def storage_box(d: Design) -> Traits:
+    material, color = d.choice(
+        [
+            ("plastic", "transparent"),
+            ("plastic", "white"),
+            ("plastic", "gray"),
+            ("plastic", "blue"),
+            ("plastic", "pink"),
+            ("fabric", "beige"),
+            ("fabric", "gray"),
+            ("fabric", "blue"),
+        ]
+    )
+    hx, hy, h = d.uniform(0.11, 0.18), d.uniform(0.08, 0.12), d.uniform(0.1, 0.17)
+    t = 0.003 if material == "plastic" else 0.006
+    floor = open_box(d, "box", (hx, hy), h, t, material, color)
+    lip = d.choice([color, "white", "black"])
+    for k, sign in enumerate((-1, 1)):
+        d.box(
+            f"lip_y{k}",
+            (hx + 0.004, 0.004, 0.003),
+            (0, sign * (hy + 0.001), h - 0.003),
+            material,
+            lip,
+        )
+        d.box(
+            f"grip_hole_{k}",
+            (0.001, hy * 0.3, 0.009),
+            (sign * (hx + 0.0006), 0, h - 0.022),
+            material,
+            "black",
+            visual_only=True,
+        )
+    d.box(
+        "label",
+        (hx * 0.25, 0.0005, h * 0.12),
+        (0, hy + 0.0006, h * 0.55),
+        "paper",
+        "white",
+        visual_only=True,
+    )
+    d.interior((hx - t - 0.005, hy - t - 0.005), floor_z=floor, rim_z=h)
+    colors = (color,) if lip == color else (color, lip)
+    return Traits(colors, material, "cuboid")
+
+
+@generator(
+    "jewelry_box",
+    size=(0.1, 0.22),
+    synonyms=("jewelry box", "jewellery box", "trinket box"),
+    container=True,
+)
+def jewelry_box(d: Design) -> Traits:
+    material, color = d.choice(
+        [
+            ("wood", "brown"),
+            ("wood", "beige"),
+            ("leather", "black"),
+            ("leather", "red"),
+            ("leather", "pink"),
+            ("plastic", "white"),
+            ("leather", "blue"),
+        ]
+    )
+    lining = d.choice([c for c in ("red", "purple", "black", "beige", "blue") if c != color])
+    hx, hy, h = d.uniform(0.05, 0.09), d.uniform(0.035, 0.06), d.uniform(0.04, 0.06)
+    t = 0.006
+    floor = open_box(d, "base", (hx, hy), h, t, material, color)
+    d.box("lining", (hx - t, hy - t, 0.001), (0, 0, floor + 0.001), "fabric", lining)
+    d.box(
+        "clasp",
+        (0.006, 0.001, 0.005),
+        (0, hy + 0.001, h - 0.006),
+        "metal",
+        "golden",
+        visual_only=True,
+    )
+    _open_lid(d, "lid", hx, hy, 0.008, (0, -hy + 0.004, h), material, color, mirror=True)
+    d.interior((hx - t - 0.004, hy - t - 0.004), floor_z=floor + 0.002, rim_z=h)
+    return Traits((color, lining), material, "cuboid")
+
+
+@generator("glasses_case", size=(0.14, 0.19), synonyms=("glasses case", "spectacle case"))
+def glasses_case(d: Design) -> Traits:
+    material, color, fill = d.choice(
+        [
+            ("leather", "brown", 0.2),
+            ("leather", "black", 0.2),
+            ("plastic", "black", 0.2),
+            ("plastic", "blue", 0.2),
+            ("plastic", "purple", 0.2),
+            ("aluminium", "silver", 0.07),
+            ("leather", "red", 0.2),
+        ]
+    )
+    length, w = d.uniform(0.145, 0.17), d.uniform(0.052, 0.065)
+    hb = d.uniform(0.016, 0.022)
+    hd = hb * d.uniform(0.75, 1.0)
+    core = length / 2 - w / 2
+    kw = dict(solid_fraction=fill)
+    d.box("shell", (core, w / 2, hb / 2), (0, 0, hb / 2), material, color, **kw)
+    for k, sign in enumerate((-1, 1)):
+        d.upright(f"end_{k}", w / 2, hb, 0.0, material, color, xy=(sign * core, 0), **kw)
+    d.ellipsoid("lid", (length / 2, w / 2, hd), (0, 0, hb), material, color, **kw)
+    seam = d.choice(["black", "gray", "silver"] if color != "black" else ["gray", "silver"])
+    d.box("seam", (core, w / 2 + 0.0005, 0.0008), (0, 0, hb), material, seam, visual_only=True)
+    d.box("hinge", (core * 0.5, 0.002, 0.003), (0, -w / 2, hb), "metal", "silver", visual_only=True)
+    return Traits((color,), material, "ellipsoid")
+
+
+@generator(
+    "pill_organizer",
+    size=(0.12, 0.24),
+    synonyms=("pill organizer", "pill box", "weekly pill organizer"),
+    container=True,
+)
+def pill_organizer(d: Design) -> Traits:
+    body = d.choice(["white", "transparent", "blue", "pink", "purple"])
+    lids = d.choice(["rainbow", "transparent", "blue", "pink", "green", "purple"])
+    cell, hy, h = d.uniform(0.02, 0.028), d.uniform(0.013, 0.018), d.uniform(0.018, 0.026)
+    t = 0.0018
+    hx = 3.5 * cell + t / 2
+    floor = open_box(d, "tray", (hx, hy), h, t, "plastic", body)
+    rainbow = ["red", "orange", "yellow", "green", "blue", "purple", "pink"]
+    for k in range(7):
+        x = (k - 3) * cell
+        if k:
+            d.box(
+                f"divider_{k}",
+                (t / 2, hy - t, (h - t) / 2),
+                (x - cell / 2, 0, (h + t) / 2),
+                "plastic",
+                body,
+            )
+        color = rainbow[k] if lids == "rainbow" else lids
+        _open_lid(
+            d,
+            f"lid_{k}",
+            cell / 2 - 0.001,
+            hy,
+            0.0015,
+            (x, -hy + 0.001, h),
+            "plastic",
+            color,
+            tilt=0.3,
+        )
+        d.box(f"tab_{k}", (0.003, 0.0015, 0.0012), (x, hy + 0.0015, h - 0.0012), "plastic", body)
+    d.interior((cell / 2 - t, hy - t), floor_z=floor, rim_z=h)
+    colors = (body,) if lids in ("rainbow", body) else (body, lids)
+    return Traits(colors, "plastic", "cuboid")
+
+
+@generator(
+    "remote_holder",
+    size=(0.12, 0.26),
+    synonyms=("remote holder", "remote control holder", "remote caddy"),
+    container=True,
+)
+def remote_holder(d: Design) -> Traits:
+    material, color = d.choice(
+        [
+            ("wood", "brown"),
+            ("wood", "beige"),
+            ("plastic", "black"),
+            ("plastic", "white"),
+            ("leather", "black"),
+            ("leather", "brown"),
+            ("plastic", "gray"),
+        ]
+    )
+    t = 0.008 if material == "wood" else 0.005
+    rows, hx = d.choice([2, 2, 3]), d.uniform(0.07, 0.11)
+    depth = d.uniform(0.032, 0.042)
+    hy = rows * depth / 2 + t / 2
+    heights = [d.uniform(0.045, 0.06) + k * d.uniform(0.025, 0.035) for k in range(rows + 1)]
+    d.box("floor", (hx, hy, t / 2), (0, 0, t / 2), material, color)
+    for k, wall_h in enumerate(heights):
+        y = hy - t / 2 - k * depth
+        d.box(f"wall_{k}", (hx, t / 2, wall_h / 2), (0, y, wall_h / 2), material, color)
+        if k == rows:
+            continue
+        for j, sign in enumerate((-1, 1)):
+            side_h = heights[k + 1]
+            d.box(
+                f"side_{k}_{j}",
+                (t / 2, depth / 2 - t / 2, side_h / 2),
+                (sign * (hx - t / 2), y - depth / 2, side_h / 2),
+                material,
+                color,
+            )
+    d.box(
+        "divider",
+        (t / 2, depth / 2 - t, heights[0] / 2 - 0.008),
+        (0, hy - depth / 2, heights[0] / 2),
+        material,
+        color,
+    )
+    d.interior(
+        (hx / 2 - t, depth / 2 - t), floor_z=t, rim_z=heights[0], center=(hx / 2, hy - depth / 2)
+    )
+    return Traits((color,), material, "cuboid")
+
+
+@generator("flashlight", size=(0.1, 0.25), synonyms=("flashlight", "torch"))
+def flashlight(d: Design) -> Traits:
+    color = d.choice(["black", "black", "silver", "red", "blue", "yellow", "orange"])
+    material = "aluminium" if color in ("black", "silver") else "plastic"
+    bezel = d.choice([color, "silver"])
+    rb, length = d.uniform(0.011, 0.016), d.uniform(0.11, 0.22)
+    apo, head = rb + d.uniform(0.004, 0.01), d.uniform(0.025, 0.04)
+    x1 = length / 2 - head / 2
+    hex_rod(d, "head", apo, head, (x1, 0, apo), material, bezel)  # anti-roll
+    d.add(
+        "lens",
+        "cylinder",
+        (apo * 0.85, 0.0006),
+        (length / 2 + 0.0006, 0, apo),
+        "glass",
+        "transparent",
+        visual_only=True,
+    )
+    body = length - head - 0.016
+    d.rod("body", rb, body, (x1 - head / 2 - body / 2, 0, apo), material, color, solid_fraction=0.6)
+    d.rod("tail_cap", apo, 0.016, (-length / 2 + 0.008, 0, apo), "rubber", "black")
+    d.box(
+        "switch",
+        (0.008, 0.005, 0.002),
+        (x1 - head / 2 - 0.015, 0, apo + rb + 0.001),
+        "rubber",
+        "black",
+        visual_only=True,
+    )
+    colors = (color,) if bezel == color else (color, bezel)
+    return Traits(colors, material, "cylinder")
+
+
+@generator("alarm_clock", size=(0.08, 0.18), synonyms=("alarm clock",))
+def alarm_clock(d: Design) -> Traits:
+    color = d.choice(["red", "black", "white", "blue", "green", "silver", "pink", "yellow"])
+    if d.rng.random() < 0.5:
+        return _digital_clock(d, color)
+    rc, depth, leg = d.uniform(0.04, 0.055), d.uniform(0.032, 0.045), d.uniform(0.01, 0.015)
+    zc = leg + rc
+    material = "metal" if color == "silver" else d.choice(["metal", "plastic"])
+    fill = 0.12 if material == "metal" else 0.4
+    d.rod("body", rc, depth, (0, 0, zc), material, color, solid_fraction=fill)
+    d.add(
+        "face",
+        "cylinder",
+        (rc * 0.85, 0.0005),
+        (depth / 2 + 0.0005, 0, zc),
+        "paper",
+        "white",
+        visual_only=True,
+    )
+    for k, (hand, angle) in enumerate(((0.5, d.uniform(0, 6.3)), (0.75, d.uniform(0, 6.3)))):
+        r = rc * hand / 2
+        d.add(
+            f"hand_{k}",
+            "box",
+            (0.0004, 0.0012, r),
+            (depth / 2 + 0.0012, -math.sin(angle) * r, zc + math.cos(angle) * r),
+            "metal",
+            "black",
+            quat=axis_angle_quat((1, 0, 0), angle),
+            visual_only=True,
+        )
+    for k, sign in enumerate((-1, 1)):
+        d.rod(f"foot_{k}", 0.004, depth, (0, sign * rc * 0.6, 0.004), "metal", "silver")
+        d.upright(f"leg_{k}", 0.003, leg, 0.002, "metal", "silver", xy=(0, sign * rc * 0.6))
+        d.ellipsoid(
+            f"bell_{k}",
+            (rc * 0.45, rc * 0.45, rc * 0.32),
+            (0, sign * rc * 0.5, zc + rc * 0.85),
+            "metal",
+            color,
+            solid_fraction=0.3,
+        )
+    d.upright("hammer", 0.003, rc * 0.3, zc + rc * 0.95, "metal", "silver")
+    d.add(
+        "handle",
+        "cylinder",
+        (0.0025, rc * 0.4),
+        (0, 0, zc + rc * 1.25 + 0.0025),
+        "metal",
+        "silver",
+        quat=X_TO_Y,
+    )
+    return Traits((color,), material, "cylinder")
+
+
+def _digital_clock(d: Design, color: str) -> Traits:
+    hx, hy, hz = d.uniform(0.02, 0.03), d.uniform(0.045, 0.07), d.uniform(0.03, 0.045)
+    d.box("body", (hx, hy, hz), (0, 0, hz), "plastic", color, solid_fraction=0.35)
+    d.box(
+        "display",
+        (0.0005, hy * 0.8, hz * 0.55),
+        (hx + 0.0005, 0, hz * 1.05),
+        "glass",
+        "black",
+        visual_only=True,
+    )
+    digit = d.choice(["red", "green", "blue", "white"])
+    for k, y in enumerate((-0.6, -0.25, 0.25, 0.6)):
+        d.box(
+            f"digit_{k}",
+            (0.0004, hy * 0.12, hz * 0.35),
+            (hx + 0.0012, y * hy, hz * 1.05),
+            "plastic",
+            digit,
+            visual_only=True,
+        )
+    d.box("snooze", (hx * 0.5, hy * 0.4, 0.003), (0, 0, 2 * hz + 0.003), "plastic", "gray")
+    return Traits((color,), "plastic", "cuboid")

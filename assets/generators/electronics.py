@@ -1,3 +1,473 @@
-"""electronics generators."""
+"""Electronic accessories and desk decorations."""
 
 from __future__ import annotations
+
+import math
+
+from ..design import Design, Traits
+from ..parts import axis_angle_quat
+from .registry import generator
+from .stationery import flat_ring, open_box, slab
+
+
+def stadium(d: Design, name: str, length, width, height, z0, material, color, xy=(0.0, 0.0), **kw):
+    """A slab with round ends in plan view (a pill) along x, standing on z = z0."""
+    fill = kw.pop("solid_fraction", 1.0)
+    core = max(length - width, 1e-4)
+    half = (core / 2, width / 2, height / 2)
+    slab(d, name, half, z0, material, color, xy=xy, solid_fraction=fill, **kw)
+    for sign in (-1, 1):  # half of each end cylinder lies inside the core box
+        end = (xy[0] + sign * core / 2, xy[1])
+        d.upright(
+            f"{name}_end{sign}",
+            width / 2,
+            height,
+            z0,
+            material,
+            color,
+            xy=end,
+            solid_fraction=fill / 2,
+            **kw,
+        )
+
+
+def dot(d: Design, name: str, radius: float, x: float, y: float, z: float, color: str) -> None:
+    """A flat round button printed on a surface at height z."""
+    d.upright(name, radius, 0.001, z, "rubber", color, xy=(x, y), visual_only=True)
+
+
+def beam(d: Design, name: str, p1, p2, half_w: float, half_t: float, material: str, color: str):
+    """A plate from p1 to p2 in the xz plane (a tilted backrest, a strut)."""
+    dx, dz = p2[0] - p1[0], p2[1] - p1[1]
+    center = ((p1[0] + p2[0]) / 2, 0.0, (p1[1] + p2[1]) / 2)
+    half = (half_t, half_w, math.hypot(dx, dz) / 2)
+    quat = axis_angle_quat((0, 1, 0), math.atan2(dx, dz))
+    d.add(name, "box", half, center, material, color, quat=quat)
+
+
+@generator("mouse", size=(0.09, 0.13), synonyms=("computer mouse", "mouse"))
+def mouse(d: Design) -> Traits:
+    shell = d.choice(["black", "gray", "white", "silver", "blue", "red"])
+    skirt = d.choice(["black", "gray", shell])
+    lx, w, h = d.uniform(0.095, 0.125), d.uniform(0.055, 0.068), d.uniform(0.032, 0.042)
+    stadium(d, "skirt", lx, w, h / 2, 0.0, "plastic", skirt, solid_fraction=0.3)
+    d.ellipsoid(
+        "shell", (lx / 2, w / 2, h / 2), (0, 0, h / 2), "plastic", shell, solid_fraction=0.3
+    )
+    x = lx * 0.22
+    top = h / 2 + h / 2 * math.sqrt(1 - (2 * x / lx) ** 2)
+    wheel = d.choice(["black", "gray"])
+    d.rod("wheel", 0.0065, 0.006, (x, 0, top - 0.0025), "rubber", wheel, axis="y", visual_only=True)
+    return Traits((shell, skirt), "plastic", "ellipsoid")
+
+
+@generator(
+    "ac_remote",
+    size=(0.12, 0.18),
+    synonyms=("ac remote", "air conditioner remote", "aircon remote"),
+)
+def ac_remote(d: Design) -> Traits:
+    color = d.choice(["white", "white", "beige", "gray", "silver"])
+    keys = "gray" if color in ("white", "beige") else "white"
+    lx, w, t = d.uniform(0.13, 0.17), d.uniform(0.045, 0.058), d.uniform(0.016, 0.022)
+    core = lx - t
+    d.box("body", (core / 2, w / 2, t / 2), (0, 0, t / 2), "plastic", color, solid_fraction=0.6)
+    for sign in (-1, 1):
+        d.rod(
+            f"end_{sign}",
+            t / 2,
+            w,
+            (sign * core / 2, 0, t / 2),
+            "plastic",
+            color,
+            axis="y",
+            solid_fraction=0.3,
+        )
+    screen_x = core / 2 - lx * 0.16
+    d.box(
+        "screen",
+        (lx * 0.13, w * 0.36, 0.0004),
+        (screen_x, 0, t + 0.0004),
+        "plastic",
+        "gray",
+        visual_only=True,
+    )
+    for k in (-1, 1):
+        digit = (screen_x, k * w * 0.08, t + 0.001)
+        d.box(
+            f"digit_{k}", (lx * 0.05, w * 0.06, 0.0003), digit, "plastic", "black", visual_only=True
+        )
+    x = screen_x - lx * 0.2
+    dot(d, "power", 0.0055, x, w * 0.25, t, d.choice(["red", "orange"]))
+    for k in (-1, 1):
+        dot(d, f"temp_{k}", 0.006, x, k * 0.002 - w * 0.12 + k * 0.007, t, "blue")
+    for row in range(2):
+        for col in (-1, 0, 1):
+            key = (x - 0.02 - row * 0.014, col * w * 0.28, t + 0.0005)
+            d.box(
+                f"key_{row}_{col}", (0.004, w * 0.1, 0.0005), key, "rubber", keys, visual_only=True
+            )
+    return Traits((color,), "plastic", "cuboid")
+
+
+@generator(
+    "presenter_clicker",
+    size=(0.085, 0.14),
+    synonyms=("presentation clicker", "slide clicker", "presentation remote", "presenter"),
+)
+def presenter_clicker(d: Design) -> Traits:
+    color = d.choice(["black", "black", "gray", "silver", "white", "blue"])
+    rocker = d.choice(["gray", "black", "silver"] if color != "black" else ["gray", "silver"])
+    lx, w, t = d.uniform(0.09, 0.13), d.uniform(0.024, 0.034), d.uniform(0.012, 0.018)
+    stadium(d, "body", lx, w, t, 0.0, "plastic", color, solid_fraction=0.6)
+    stadium(
+        d,
+        "rocker",
+        lx * 0.32,
+        w * 0.62,
+        0.001,
+        t,
+        "rubber",
+        rocker,
+        xy=(-lx * 0.02, 0),
+        visual_only=True,
+    )
+    d.box(
+        "rocker_split",
+        (0.0005, w * 0.3, 0.0005),
+        (-lx * 0.02, 0, t + 0.0012),
+        "rubber",
+        "black",
+        visual_only=True,
+    )
+    dot(d, "laser_button", w * 0.16, lx * 0.27, 0, t, "red")
+    d.rod("aperture", 0.002, 0.001, (lx / 2 + 0.0005, 0, t / 2), "glass", "red", visual_only=True)
+    return Traits((color,), "plastic", "elongated")
+
+
+@generator("gamepad", size=(0.12, 0.17), synonyms=("gamepad", "game controller", "joypad"))
+def gamepad(d: Design) -> Traits:
+    color = d.choice(["black", "white", "gray", "blue", "red", "purple"])
+    accent = "gray" if color == "black" else "black"
+    w, depth, h = d.uniform(0.13, 0.16), d.uniform(0.034, 0.039), d.uniform(0.022, 0.028)
+    stadium(d, "body", w, depth, h, 0.0, "plastic", color, solid_fraction=0.5)
+    for sign in (-1, 1):
+        d.add(
+            f"grip_{sign}",
+            "ellipsoid",
+            (0.018, 0.028, h / 2),
+            (sign * w * 0.3, -depth / 2, h / 2),
+            "plastic",
+            color,
+            quat=axis_angle_quat((0, 0, 1), sign * 0.35),
+            solid_fraction=0.5,
+        )
+        bumper = (0.014, 0.0025, h * 0.25)
+        d.box(
+            f"bumper_{sign}",
+            bumper,
+            (sign * w * 0.3, depth / 2 + 0.0025, h * 0.6),
+            "plastic",
+            accent,
+        )
+        d.upright(
+            f"stick_{sign}", 0.0035, 0.005, h, "plastic", accent, xy=(sign * w * 0.12, -depth * 0.2)
+        )
+        d.upright(
+            f"stick_cap_{sign}",
+            0.0085,
+            0.003,
+            h + 0.005,
+            "rubber",
+            accent,
+            xy=(sign * w * 0.12, -depth * 0.2),
+        )
+        d.box(
+            f"menu_{sign}",
+            (0.003, 0.0012, 0.0004),
+            (sign * 0.008, depth * 0.18, h + 0.0004),
+            "rubber",
+            accent,
+            visual_only=True,
+        )
+    pad = (-w * 0.3, depth * 0.08, h + 0.0008)
+    for k, half in enumerate(((0.008, 0.0025, 0.0008), (0.0025, 0.008, 0.0008))):
+        d.box(f"dpad_{k}", half, pad, "rubber", accent, visual_only=True)
+    for name, dx, dy in (("yellow", 0, 1), ("green", 0, -1), ("blue", -1, 0), ("red", 1, 0)):
+        dot(d, f"button_{name}", 0.0035, w * 0.3 + dx * 0.0075, depth * 0.08 + dy * 0.0075, h, name)
+    return Traits((color,), "plastic", "irregular")
+
+
+@generator(
+    "earbud_case",
+    size=(0.045, 0.075),
+    synonyms=("earbud case", "earbuds case", "earphone case"),
+)
+def earbud_case(d: Design) -> Traits:
+    color = d.choice(["white", "white", "black", "gray", "blue", "pink", "green"])
+    if d.rng.random() < 0.5:  # standing, the lid on top
+        lx, depth, h, split = d.uniform(0.045, 0.062), d.uniform(0.02, 0.027), 0.05, 0.72
+        h *= d.uniform(0.9, 1.1)
+    else:  # lying, a clamshell
+        lx, depth, h, split = d.uniform(0.055, 0.07), d.uniform(0.04, 0.052), 0.028, 0.55
+        h *= d.uniform(0.88, 1.12)
+    z = h * split
+    stadium(d, "base", lx, depth, z - 0.0005, 0.0, "plastic", color, solid_fraction=0.5)
+    stadium(d, "seam", lx - 0.0015, depth - 0.0015, 0.001, z - 0.0005, "plastic", "gray")
+    stadium(d, "lid", lx, depth, h - z - 0.0005, z + 0.0005, "plastic", color, solid_fraction=0.4)
+    led = d.choice(["green", "white", "orange"])
+    d.rod(
+        "led",
+        0.0012,
+        0.0006,
+        (0, depth / 2 + 0.0003, z * 0.55),
+        "plastic",
+        led,
+        axis="y",
+        visual_only=True,
+    )
+    return Traits((color,), "plastic", "cuboid")
+
+
+@generator(
+    "charging_head",
+    size=(0.04, 0.075),
+    synonyms=("wall charger", "charging head", "power adapter", "charger plug"),
+)
+def charging_head(d: Design) -> Traits:
+    color = d.choice(["white", "white", "black", "gray"])
+    lx, w = d.uniform(0.026, 0.045), d.uniform(0.026, 0.045)
+    round_pins = d.rng.random() < 0.5
+    h = d.uniform(0.027, 0.034) if round_pins else d.uniform(0.022, 0.03)
+    slab(d, "body", (lx / 2, w / 2, h / 2), 0.0, "plastic", color)
+    if round_pins:
+        d.rod("plug_face", 0.013, 0.006, (lx / 2 + 0.003, 0, h / 2), "plastic", color)
+        for sign in (-1, 1):
+            pin = (lx / 2 + 0.006 + 0.0095, sign * 0.0095, h / 2)
+            d.rod(f"pin_{sign}", 0.002, 0.019, pin, "metal", "silver")
+    else:
+        for sign in (-1, 1):
+            prong = (lx / 2 + 0.008, sign * 0.0063, h / 2)
+            d.box(f"prong_{sign}", (0.008, 0.0008, 0.003), prong, "metal", "silver")
+    d.box(
+        "port",
+        (0.0004, 0.006, 0.0022),
+        (-lx / 2 - 0.0004, 0, h / 2),
+        "plastic",
+        "black",
+        visual_only=True,
+    )
+    dot(d, "logo", min(lx, w) * 0.18, 0, 0, h, "gray" if color != "gray" else "white")
+    return Traits((color,), "plastic", "cube" if abs(lx - w) < 0.006 else "cuboid")
+
+
+def _plug(d: Design, name: str, x: float, sign: int, housing, tip, color: str, tip_color: str):
+    """A cable plug lying on the table at x, pointing away along sign * x."""
+    d.box(f"{name}_housing", housing, (x + sign * housing[0], 0, housing[2]), "plastic", color)
+    tip_x = x + sign * (2 * housing[0] + tip[0])
+    d.box(f"{name}_tip", tip, (tip_x, 0, housing[2]), "metal", tip_color)
+
+
+@generator(
+    "charging_cable",
+    size=(0.1, 0.19),
+    synonyms=("charging cable", "usb cable", "charger cable", "phone cable"),
+)
+def charging_cable(d: Design) -> Traits:
+    color = d.choice(["white", "white", "black", "gray", "red", "blue"])
+    cr, radius, loops, n = d.uniform(0.0017, 0.0022), d.uniform(0.022, 0.031), d.choice([2, 3]), 12
+    for j in range(loops):
+        rj, cx = radius - j * cr * 1.2, j * 0.0015
+        for k in range(n):
+            a = 2 * math.pi * k / n
+            pos = (cx + rj * math.cos(a), rj * math.sin(a), cr + j * 1.6 * cr)
+            d.add(
+                f"loop_{j}_{k}",
+                "capsule",
+                (cr, rj * math.pi / n),
+                pos,
+                "plastic",
+                color,
+                quat=axis_angle_quat((0, 0, 1), a + math.pi / 2),
+            )
+    tie = d.choice(["black", "green", "blue", "red"])
+    bundle = (0.005, loops * cr * 1.3, (loops * 1.6 + 0.4) * cr / 2 + 0.0004)
+    d.box(
+        "tie",
+        bundle,
+        (0, radius - cr * 0.6 * loops, bundle[2] - 0.0003),
+        "fabric",
+        tie,
+        visual_only=True,
+    )
+    for sign in (1, -1):
+        tail = d.uniform(0.008, 0.025)
+        start = sign * (radius + (0.0015 * (loops - 1) if sign > 0 else 0.0))
+        d.rod(f"tail_{sign}", cr, tail, (start + sign * tail / 2, 0, cr), "plastic", color)
+        if sign > 0:  # USB-A
+            _plug(
+                d,
+                "usb_a",
+                start + tail,
+                1,
+                (0.009, 0.0065, 0.0038),
+                (0.006, 0.006, 0.0022),
+                color,
+                "silver",
+            )
+        else:  # USB-C or Lightning
+            tip = d.choice(["silver", "silver", "white"]) if color == "white" else "silver"
+            _plug(
+                d,
+                "phone_end",
+                start - tail,
+                -1,
+                (0.0075, 0.0042, 0.0031),
+                (0.0042, 0.0042, 0.0012),
+                color,
+                tip,
+            )
+    return Traits((color,), "plastic", "ring")
+
+
+@generator(
+    "mini_sculpture",
+    size=(0.06, 0.16),
+    synonyms=("figurine", "statuette", "mini sculpture", "small sculpture"),
+)
+def mini_sculpture(d: Design) -> Traits:
+    material = d.choice(["stone", "stone", "ceramic", "metal", "wood"])
+    color = d.choice(
+        {
+            "stone": ["white", "gray", "black", "beige"],
+            "ceramic": ["white", "blue", "black", "green"],
+            "metal": ["golden", "silver", "black"],
+            "wood": ["brown", "beige"],
+        }[material]
+    )
+    fill = 0.3 if material == "metal" else 1.0
+    plinth_mat = d.choice(["wood", "stone"])
+    plinth = d.choice(["brown", "black"] if plinth_mat == "wood" else ["black", "white", "gray"])
+    pw, ph = d.uniform(0.035, 0.055), d.uniform(0.012, 0.022)
+    if d.rng.random() < 0.5:
+        slab(d, "plinth", (pw / 2, pw / 2, ph / 2), 0.0, plinth_mat, plinth)
+    else:
+        d.upright("plinth", pw / 2, ph, 0.0, plinth_mat, plinth)
+    look = (material, color)
+    kind = d.choice(["figure", "cairn", "twist", "ring", "orb"])
+    if kind == "figure":
+        rz, rh = d.uniform(0.028, 0.038), d.uniform(0.009, 0.012)
+        d.ellipsoid("torso", (rz * 0.42, rz * 0.3, rz), (0, 0, ph + rz), *look, solid_fraction=fill)
+        d.upright("neck", rh * 0.45, rh * 0.6, ph + 2 * rz - 0.002, *look, solid_fraction=fill)
+        d.sphere("head", rh, (0, 0, ph + 2 * rz + rh * 0.5), *look, solid_fraction=fill)
+        shape = "irregular"
+    elif kind == "cairn":
+        z, r = ph, pw * d.uniform(0.42, 0.5)
+        for k in range(d.choice([3, 4, 5])):
+            rz = r * d.uniform(0.4, 0.5)
+            d.ellipsoid(
+                f"pebble_{k}", (r, r * 0.85, rz), (0, 0, z + rz), *look, solid_fraction=fill
+            )
+            z, r = z + 2 * rz * 0.92, r * d.uniform(0.72, 0.85)
+        shape = "irregular"
+    elif kind == "twist":
+        side, slices = pw * d.uniform(0.28, 0.36), d.choice([6, 7, 8, 9])
+        th, turn = d.uniform(0.008, 0.011), d.uniform(0.12, 0.2)
+        for k in range(slices):
+            half = (side * (1 - 0.04 * k), side * (1 - 0.04 * k), th / 2)
+            slab(d, f"slice_{k}", half, ph + k * th, *look, yaw=k * turn, solid_fraction=fill)
+        shape = "elongated"
+    elif kind == "ring":
+        rr, band, segs = d.uniform(0.024, 0.034), d.uniform(0.006, 0.009), 16
+        zc = ph + rr + band / 2
+        chord = 2 * (rr + band / 2) * math.tan(math.pi / segs) * 1.02
+        for k in range(segs):
+            a = 2 * math.pi * k / segs
+            pos = (rr * math.cos(a), 0, zc + rr * math.sin(a))
+            quat = axis_angle_quat((0, 1, 0), -a - math.pi / 2)
+            d.add(
+                f"ring_{k}",
+                "box",
+                (chord / 2, band * 0.7, band / 2),
+                pos,
+                *look,
+                quat=quat,
+                solid_fraction=fill,
+            )
+        shape = "ring"
+    else:
+        r = d.uniform(0.02, 0.028)
+        d.upright("cup", r * 0.45, 0.004, ph, *look, solid_fraction=fill)
+        d.sphere("orb", r, (0, 0, ph + 0.002 + r), *look, solid_fraction=fill)
+        shape = "sphere"
+    return Traits((color, plinth), material, shape)
+
+
+@generator("phone_stand", size=(0.07, 0.13), synonyms=("phone stand", "phone holder", "phone dock"))
+def phone_stand(d: Design) -> Traits:
+    material = d.choice(["aluminium", "plastic", "wood"])
+    color = d.choice(
+        {
+            "aluminium": ["silver", "gray", "black"],
+            "plastic": ["white", "black", "pink", "blue"],
+            "wood": ["brown", "beige"],
+        }[material]
+    )
+    t = {"aluminium": 0.004, "plastic": 0.005, "wood": 0.01}[material]
+    w, lx, base_t = d.uniform(0.05, 0.074), d.uniform(0.07, 0.1), t * 1.4
+    lean, back = d.uniform(0.3, 0.5), d.uniform(0.08, 0.11)
+    slab(d, "base", (lx / 2, w / 2, base_t / 2), 0.0, material, color)
+    foot = lx / 2 - d.uniform(0.02, 0.028)
+    top = (foot - back * math.sin(lean), base_t + back * math.cos(lean))
+    beam(d, "backrest", (foot, base_t), top, w / 2, t / 2, material, color)
+    lip_x = foot + t / 2 + 0.011
+    slab(d, "lip", (0.0025, w / 2, 0.005), base_t, material, color, xy=(lip_x, 0))
+    pad = d.choice(["black", "gray"])
+    slab(
+        d,
+        "pad",
+        (0.0085, w * 0.4, 0.0004),
+        base_t,
+        "silicone",
+        pad,
+        xy=(lip_x - 0.0085 - 0.0025, 0),
+        visual_only=True,
+    )
+    if material != "wood":
+        mid = (foot - 0.55 * back * math.sin(lean) - t, base_t + 0.55 * back * math.cos(lean))
+        beam(d, "strut", (-lx / 2 + t, base_t), mid, w * 0.3, t / 2, material, color)
+    return Traits((color,), material, "L-shape")
+
+
+@generator("vase", size=(0.12, 0.27), synonyms=("vase", "flower vase"), container=True)
+def vase(d: Design) -> Traits:
+    material = d.choice(["ceramic", "ceramic", "glass"])
+    colors = ["white", "blue", "black", "green", "beige", "red", "pink"]
+    color = d.choice(colors if material == "ceramic" else ["transparent", "transparent", "blue"])
+    t, floor = (0.005 if material == "ceramic" else 0.004), 0.008
+    h = d.uniform(0.13, 0.25)
+    kind = d.choice(["cylinder", "flared", "square", "bottle"])
+    if kind == "square":
+        hx, hy = d.uniform(0.03, 0.045), d.uniform(0.03, 0.045)
+        open_box(d, "vessel", hx, hy, h, t, floor, material, color)
+        d.interior(((hx - t) * 0.85, (hy - t) * 0.85), floor_z=floor, rim_z=h)
+        return Traits((color,), material, "cuboid")
+    r = d.uniform(0.03, 0.048) if kind != "flared" else d.uniform(0.025, 0.035)
+    d.upright("floor", r + t, floor, 0.0, material, color)
+    opening = r
+    if kind == "cylinder":
+        d.wall("wall", r, t, h - floor, floor, material, color, segments=20)
+    elif kind == "flared":
+        flare = math.atan2(d.uniform(0.045, 0.06) - r, h)
+        d.wall("wall", r, t, h - floor, floor, material, color, segments=20, flare=flare)
+    else:
+        body, opening = (h - floor) * d.uniform(0.55, 0.7), d.uniform(0.012, 0.02)
+        d.wall("body", r, t, body, floor, material, color, segments=20)
+        shoulder = (opening + r + t) / 2
+        flat_ring(
+            d, "shoulder", shoulder, r + t - opening, t, floor + body, material, color, segments=20
+        )
+        neck_z = floor + body + t
+        d.wall("neck", opening, t, h - neck_z, neck_z, material, color, segments=14)
+    d.interior((opening * 0.68, opening * 0.68), floor_z=floor, rim_z=h)
+    return Traits((color,), material, "cylinder" if kind != "flared" else "cone")

@@ -1,3 +1,552 @@
-"""groceries generators."""
+"""Fruits, vegetables, breads, drinks and snacks of the grocery shelf."""
 
 from __future__ import annotations
+
+import math
+
+from ..design import Design, Traits
+from ..parts import X_TO_Z, axis_angle_quat, quat_mul
+from .registry import generator
+
+WRAPPERS = ["red", "blue", "green", "yellow", "orange", "purple", "pink", "black", "white"]
+PRINTS = ["white", "yellow", "red", "silver", "blue"]
+
+
+def _yaw(angle: float) -> tuple[float, ...]:
+    return axis_angle_quat((0, 0, 1), angle)
+
+
+def _dots(d: Design, name: str, center, radii, count: int, size: float, color: str) -> None:
+    """Small decorative dots (seeds, eyes, chips) on the upper half of an ellipsoid."""
+    for k in range(count):
+        theta, phi = d.uniform(0.25, 1.25), d.uniform(0.0, 2 * math.pi)
+        pos = (
+            center[0] + radii[0] * math.sin(theta) * math.cos(phi),
+            center[1] + radii[1] * math.sin(theta) * math.sin(phi),
+            center[2] + radii[2] * math.cos(theta),
+        )
+        d.sphere(f"{name}_{k}", size, pos, "organic", color, visual_only=True)
+
+
+def _stalk(d: Design, top: float, length: float, tilt: float) -> None:
+    """A thin stalk leaning ``tilt`` radians from upright, rooted at height ``top``."""
+    quat = quat_mul(axis_angle_quat((0, 1, 0), tilt), X_TO_Z)
+    center = (math.sin(tilt) * length / 2, 0.0, top - 0.003 + math.cos(tilt) * length / 2)
+    d.add("stalk", "cylinder", (0.0022, length / 2), center, "organic", "brown", quat=quat)
+
+
+def _leaf(d: Design, pos, length: float, yaw: float) -> None:
+    d.box("leaf", (length / 2, length / 4, 0.0012), pos, "organic", "green", yaw=yaw)
+
+
+def _crimps(d: Design, half_x: float, width: float, z: float, color: str, reach: float) -> None:
+    """The flat sealed (or twisted) ends of a wrapper, at x = +-half_x."""
+    for k, sign in enumerate((-1, 1)):
+        center = (sign * (half_x + reach / 2), 0.0, z)
+        d.box(f"crimp_{k}", (reach / 2, width / 2, 0.0012), center, "plastic", color)
+
+
+def _print(d: Design, name: str, radius: float, depth: float, z: float, color: str) -> None:
+    """A round printed picture on the front and back faces of a body ``depth`` deep in y."""
+    d.add(
+        name,
+        "cylinder",
+        (radius, depth / 2 + 0.001),
+        (0, 0, z),
+        "paper",
+        color,
+        quat=_yaw(math.pi / 2),
+        visual_only=True,
+    )
+
+
+def _band(d: Design, name: str, half, z: float, color: str, x: float = 0.0) -> None:
+    """A printed label wrapped around a box-shaped body (decoration)."""
+    d.box(name, half, (x, 0.0, z), "paper", color, visual_only=True)
+
+
+# fruits ----------------------------------------------------------------------------------
+@generator("pear", size=(0.07, 0.14))
+def pear(d: Design) -> Traits:
+    color = d.choice(["green", "green", "yellow", "brown", "red"])
+    r = d.uniform(0.03, 0.035)
+    low = r * d.uniform(0.85, 0.95)
+    d.upright("base", r * 0.35, 0.004, 0.0, "organic", color)
+    d.ellipsoid("body", (r, r, low), (0, 0, low), "organic", color)
+    neck_r, neck_h = r * d.uniform(0.55, 0.65), r * d.uniform(0.75, 0.95)
+    neck_z = low * 1.7
+    d.ellipsoid("neck", (neck_r, neck_r, neck_h), (0, 0, neck_z), "organic", color)
+    _dots(d, "speck", (0, 0, low), (r, r, low), 10, 0.0012, "brown")
+    top = neck_z + neck_h
+    _stalk(d, top, d.uniform(0.012, 0.02), d.uniform(0.1, 0.4))
+    if d.rng.random() < 0.4:
+        _leaf(d, (0.012, 0.0, top + 0.002), 0.026, d.uniform(0, math.pi))
+    return Traits((color,), "organic", "irregular")
+
+
+@generator("strawberry", size=(0.03, 0.07))
+def strawberry(d: Design) -> Traits:
+    r = d.uniform(0.012, 0.018)
+    length = r * d.uniform(2.4, 2.9)
+    # lying on its side: the wide shoulder at +x, the tip at -x
+    pieces = ((0.3, 1.0, 0.22), (0.28, 0.78, -0.08), (0.2, 0.45, -0.3))
+    for k, (ax, rad, x) in enumerate(pieces):
+        h = r * rad * 0.92
+        d.ellipsoid(f"body_{k}", (length * ax, r * rad, h), (length * x, 0, h), "organic", "red")
+    z = r * 0.92
+    _dots(d, "seed", (length * 0.22, 0, z), (length * 0.3, r, z), 16, 0.0008, "yellow")
+    cap_x = length * 0.52 - 0.002
+    d.rod("calyx", r * 0.3, 0.003, (cap_x, 0, z), "organic", "green")
+    for k in range(6):
+        a = 2 * math.pi * k / 6 + 0.3
+        pos = (cap_x - 0.002, r * 0.5 * math.cos(a), z + r * 0.5 * math.sin(a))
+        quat = quat_mul(axis_angle_quat((1, 0, 0), a), axis_angle_quat((0, 0, 1), -0.5))
+        d.add(
+            f"sepal_{k}", "ellipsoid", (0.001, r * 0.4, 0.0022), pos, "organic", "green", quat=quat
+        )
+    d.rod("stem", 0.0013, 0.01, (cap_x + 0.005, 0, z), "organic", "green")
+    return Traits(("red",), "organic", "cone")
+
+
+@generator("peach", size=(0.055, 0.1))
+def peach(d: Design) -> Traits:
+    color = d.choice(["orange", "orange", "yellow", "pink"])
+    r = d.uniform(0.027, 0.034)
+    h = r * d.uniform(0.88, 0.97)
+    d.ellipsoid("body", (r, r * d.uniform(0.92, 1.0), h), (0, 0, h), "organic", color)
+    crease = "orange" if color == "yellow" else "red"
+    d.ellipsoid("crease", (0.002, r * 1.01, h), (0, 0, h), "organic", crease, visual_only=True)
+    _stalk(d, 2 * h, d.uniform(0.006, 0.01), 0.1)
+    if d.rng.random() < 0.5:
+        _leaf(d, (0.015, 0.0, 2 * h + 0.001), 0.035, d.uniform(0, math.pi))
+    return Traits((color,), "organic", "sphere")
+
+
+# ingredients -----------------------------------------------------------------------------
+@generator("potato", size=(0.06, 0.13))
+def potato(d: Design) -> Traits:
+    color = d.choice(["brown", "brown", "beige", "yellow", "red"])
+    a = d.uniform(0.032, 0.055)
+    b, c = min(a * d.uniform(0.62, 0.8), 0.034), a * d.uniform(0.5, 0.62)
+    d.ellipsoid("body", (a, b, c), (0, 0, c), "organic", color)
+    lumpy = d.rng.random() < 0.6
+    if lumpy:
+        side = d.choice([-1, 1])
+        lump = (a * 0.5, b * 0.85, c * 0.9)
+        d.ellipsoid("lump", lump, (side * a * 0.5, b * 0.12, lump[2]), "organic", color)
+    _dots(d, "eye", (0, 0, c), (a, b, c), 6, 0.0018, "black" if color == "brown" else "brown")
+    return Traits((color,), "organic", "irregular" if lumpy else "ellipsoid")
+
+
+@generator("garlic", size=(0.04, 0.09), synonyms=("garlic", "garlic bulb", "head of garlic"))
+def garlic(d: Design) -> Traits:
+    skin = d.choice(["white", "white", "beige"])
+    streak = d.choice([skin, skin, "purple"])
+    r = d.uniform(0.021, 0.03)
+    h = r * d.uniform(0.8, 0.9)
+    d.upright("root_plate", r * 0.35, 0.004, 0.0, "organic", "beige")
+    d.ellipsoid("bulb", (r * 0.9, r * 0.9, h), (0, 0, h + 0.002), "organic", skin)
+    count = int(d.rng.integers(6, 9))
+    for k in range(count):
+        a = 2 * math.pi * k / count
+        pos = (r * 0.55 * math.cos(a), r * 0.55 * math.sin(a), h * 0.95 + 0.002)
+        radii = (r * 0.45, r * 0.32, h * 0.93)
+        d.add(f"clove_{k}", "ellipsoid", radii, pos, "organic", skin, quat=_yaw(a))
+        if streak != skin:
+            radii = (r * 0.5, r * 0.07, h * 0.8)
+            d.add(
+                f"streak_{k}",
+                "ellipsoid",
+                radii,
+                pos,
+                "organic",
+                streak,
+                quat=_yaw(a),
+                visual_only=True,
+            )
+    d.ellipsoid("neck", (r * 0.22, r * 0.22, h * 0.55), (0, 0, 1.9 * h), "organic", skin)
+    d.upright("tip", r * 0.08, h * 0.35, 2.3 * h, "organic", skin)
+    return Traits(tuple(dict.fromkeys((skin, streak))), "organic", "sphere")
+
+
+def _lying_taper(d: Design, name: str, r0: float, length: float, color: str, bend: float):
+    """A tapering body lying along an arc in the xy plane, thick end first; its thick end."""
+    n = 5
+    arc = length / max(bend, 1e-3)
+    seg = length / n
+    a0 = -bend / 2
+    for k in range(n):
+        a = a0 + bend * (k + 0.5) / n
+        r = r0 * (1.0 - 0.72 * k / (n - 1))
+        center = (arc * math.sin(a), arc * (1 - math.cos(a)), r)
+        d.add(f"{name}_{k}", "capsule", (r, seg / 2), center, "organic", color, quat=_yaw(a))
+    end = (arc * math.sin(a0), arc * (1 - math.cos(a0)))
+    return end, (math.cos(a0), math.sin(a0))
+
+
+@generator("carrot", size=(0.1, 0.3))
+def carrot(d: Design) -> Traits:
+    color = d.choice(["orange", "orange", "orange", "purple"])
+    r0 = d.uniform(0.012, 0.019)
+    length = d.uniform(0.12, 0.19)
+    (x, y), (tx, ty) = _lying_taper(d, "root", r0, length, color, d.uniform(0.0, 0.15))
+    top = (x - tx * (r0 + 0.003), y - ty * (r0 + 0.003), r0)
+    d.add(
+        "crown",
+        "cylinder",
+        (r0 * 0.55, 0.004),
+        top,
+        "organic",
+        "green",
+        quat=_yaw(math.atan2(ty, tx)),
+    )
+    leafy = d.rng.random() < 0.6
+    fronds = int(d.rng.integers(3, 6)) if leafy else 0
+    for k in range(fronds):  # drooping onto the table
+        frond = d.uniform(0.045, 0.09)
+        yaw = math.atan2(-ty, -tx) + d.uniform(-0.45, 0.45)
+        pitch = math.asin((r0 - 0.0012) / frond)
+        quat = quat_mul(_yaw(yaw), axis_angle_quat((0, 1, 0), pitch))
+        reach = (frond / 2) * math.cos(pitch) + 0.004
+        pos = (top[0] + math.cos(yaw) * reach, top[1] + math.sin(yaw) * reach, (r0 + 0.0012) / 2)
+        d.add(f"frond_{k}", "box", (frond / 2, 0.004, 0.0012), pos, "organic", "green", quat=quat)
+    colors = (color, "green") if leafy else (color,)
+    return Traits(colors, "organic", "cone")
+
+
+@generator("chili", size=(0.06, 0.16), synonyms=("chili", "chili pepper", "hot pepper"))
+def chili(d: Design) -> Traits:
+    color = d.choice(["red", "red", "green", "orange"])
+    length = d.uniform(0.07, 0.12)
+    r0 = length * d.uniform(0.09, 0.12)
+    (x, y), (tx, ty) = _lying_taper(d, "pod", r0, length, color, d.uniform(0.5, 1.1))
+    yaw = _yaw(math.atan2(ty, tx))
+    cap = (x - tx * r0 * 0.6, y - ty * r0 * 0.6, r0)
+    d.add("calyx", "cylinder", (r0 * 0.95, 0.003), cap, "organic", "green", quat=yaw)
+    stem = d.uniform(0.012, 0.022)
+    pos = (cap[0] - tx * stem / 2, cap[1] - ty * stem / 2, r0)
+    d.add("stem", "cylinder", (0.0018, stem / 2), pos, "organic", "green", quat=yaw)
+    return Traits(tuple(dict.fromkeys((color, "green"))), "organic", "elongated")
+
+
+@generator("bread", size=(0.07, 0.24))
+def bread(d: Design) -> Traits:
+    crust = d.choice(["brown", "golden", "golden", "beige"])
+    kind = d.choice(["loaf", "roll", "batard"])
+    if kind == "loaf":  # a sandwich loaf with a rounded top and one end cut
+        crumb = "beige" if crust != "beige" else "white"
+        lx, ly, hz = d.uniform(0.13, 0.19), d.uniform(0.058, 0.068), d.uniform(0.04, 0.06)
+        d.box(
+            "body", (lx / 2, ly / 2, hz / 2), (0, 0, hz / 2), "organic", crust, solid_fraction=0.3
+        )
+        d.rod("crown", ly / 2, lx, (0, 0, hz), "organic", crust, solid_fraction=0.3)
+        inset = (lx / 2 + 0.0008, 0, hz)
+        d.box(
+            "crumb",
+            (0.0008, ly / 2 - 0.004, hz / 2 - 0.002),
+            (inset[0], 0, hz / 2 + 0.002),
+            "organic",
+            crumb,
+            visual_only=True,
+        )
+        d.rod("crumb_top", ly / 2 - 0.004, 0.0016, inset, "organic", crumb, visual_only=True)
+        return Traits((crust, crumb), "organic", "cuboid")
+    if kind == "roll":
+        a = d.uniform(0.04, 0.055)
+        b, c = min(a * d.uniform(0.75, 0.95), 0.034), d.uniform(0.024, 0.032)
+    else:
+        a, b, c = d.uniform(0.08, 0.115), d.uniform(0.028, 0.034), d.uniform(0.028, 0.036)
+    d.ellipsoid("crust", (a, b, c), (0, 0, c), "organic", crust, solid_fraction=0.3)
+    slashes = 1 if kind == "roll" else int(d.rng.integers(3, 5))
+    score = "beige" if crust != "beige" else "white"
+    for k in range(slashes):
+        x = (k - (slashes - 1) / 2) * a * 1.5 / max(slashes, 2)
+        z = c + c * math.sqrt(max(1 - (x / a) ** 2, 0.0)) - 0.0012
+        radii = (min(a * 0.3, 0.025), 0.003, 0.0025)
+        quat = _yaw(0.5 if slashes > 1 else 0.0)
+        d.add(
+            f"score_{k}",
+            "ellipsoid",
+            radii,
+            (x, 0, z),
+            "organic",
+            score,
+            quat=quat,
+            visual_only=True,
+        )
+    return Traits((crust,), "organic", "ellipsoid" if kind == "roll" else "elongated")
+
+
+# beverages -------------------------------------------------------------------------------
+@generator("juice", size=(0.09, 0.18), synonyms=("juice", "fruit juice"))
+def juice(d: Design) -> Traits:
+    fruit = d.choice(["orange", "yellow", "red", "purple", "green"])
+    if d.rng.random() < 0.5:
+        box = d.choice(WRAPPERS)
+        lx, ly, hz = d.uniform(0.04, 0.055), d.uniform(0.028, 0.038), d.uniform(0.075, 0.105)
+        d.box("carton", (lx / 2, ly / 2, hz / 2), (0, 0, hz / 2), "paper", box, solid_fraction=1.4)
+        _print(d, "fruit_print", lx * 0.3, ly, hz * 0.45, fruit)
+        straw_color = d.choice(["white", "yellow", "pink", "blue"])
+        straw = d.uniform(0.035, 0.05)
+        d.upright(
+            "straw", 0.0025, straw, hz - 0.004, "plastic", straw_color, xy=(lx * 0.25, ly * 0.2)
+        )
+        tip = quat_mul(axis_angle_quat((0, 1, 0), 0.7), X_TO_Z)
+        top = (lx * 0.25 + 0.0032, ly * 0.2, hz - 0.004 + straw + 0.0038)
+        d.add("straw_tip", "cylinder", (0.0025, 0.007), top, "plastic", straw_color, quat=tip)
+        return Traits((box, fruit) if box != fruit else (box,), "paper", "cuboid")
+    cap = d.choice(["white", "green", "orange", "blue", "black"])
+    r, hz = d.uniform(0.028, 0.035), d.uniform(0.11, 0.15)
+    body = hz * 0.7
+    d.upright("bottle", r, body, 0.0, "plastic", fruit, solid_fraction=0.95)
+    d.ellipsoid("shoulder", (r, r, hz * 0.12), (0, 0, body), "plastic", fruit, solid_fraction=0.95)
+    d.upright(
+        "label",
+        r + 0.0012,
+        body * 0.5,
+        body * 0.22,
+        "paper",
+        d.choice(PRINTS[:3]),
+        visual_only=True,
+    )
+    neck_z = body + hz * 0.08
+    d.upright("neck", r * 0.6, hz - neck_z - 0.018, neck_z, "plastic", fruit)
+    d.upright("cap", r * 0.68, 0.018, hz - 0.018, "plastic", cap)
+    return Traits((fruit, cap), "plastic", "cylinder")
+
+
+@generator("milk_carton", size=(0.1, 0.26), synonyms=("milk carton", "carton of milk", "milk"))
+def milk_carton(d: Design) -> Traits:
+    body = d.choice(["white", "white", "white", "yellow", "beige"])
+    band = d.choice(["blue", "blue", "red", "green", "pink"])
+    w = d.uniform(0.055, 0.072)
+    hz = d.uniform(0.08, 0.19)
+    d.box("carton", (w / 2, w / 2, hz / 2), (0, 0, hz / 2), "paper", body, solid_fraction=1.4)
+    s = w / (2 * math.sqrt(2))
+    gable = axis_angle_quat((1, 0, 0), math.pi / 4)
+    d.add("gable", "box", (w / 2, s, s), (0, 0, hz), "paper", body, quat=gable)
+    fin = d.uniform(0.008, 0.014)
+    d.box("fin", (w / 2, 0.0015, fin / 2), (0, 0, hz + w / 2 + fin / 2 - 0.003), "paper", body)
+    _band(d, "print", (w / 2 + 0.0008, w / 2 + 0.0008, hz * 0.22), hz * 0.45, band)
+    if d.rng.random() < 0.5:
+        spout = quat_mul(axis_angle_quat((1, 0, 0), -math.pi / 4), X_TO_Z)
+        pos = (0, w / 4 + 0.004, hz + w / 4 + 0.004)
+        d.add(
+            "spout_cap", "cylinder", (min(w * 0.18, 0.011), 0.005), pos, "plastic", band, quat=spout
+        )
+    return Traits((body, band), "paper", "cuboid")
+
+
+# snacks ----------------------------------------------------------------------------------
+@generator("candy", size=(0.035, 0.08), synonyms=("candy", "sweet", "wrapped candy"))
+def candy(d: Design) -> Traits:
+    wrapper = d.choice(WRAPPERS[:-2] + ["golden", "silver"])
+    stripe = d.choice([c for c in PRINTS if c != wrapper])
+    a, b = d.uniform(0.012, 0.019), d.uniform(0.01, 0.013)
+    c = min(b, d.uniform(0.008, 0.011))
+    d.ellipsoid("sweet", (a, b, c), (0, 0, c), "organic", wrapper, solid_fraction=1.6)
+    d.ellipsoid(
+        "stripe", (a * 0.3, b * 1.03, c * 1.03), (0, 0, c), "plastic", stripe, visual_only=True
+    )
+    fan = d.uniform(0.007, 0.011)
+    for k, sign in enumerate((-1, 1)):  # the twisted ends of the wrapper
+        d.rod(f"twist_{k}", 0.0025, 0.007, (sign * (a + 0.002), 0, c), "plastic", wrapper)
+        d.ellipsoid(
+            f"fan_{k}",
+            (fan / 2, b * d.uniform(0.8, 1.0), 0.0015),
+            (sign * (a + 0.004 + fan / 2), 0, c),
+            "plastic",
+            wrapper,
+        )
+    return Traits((wrapper, stripe), "organic", "ellipsoid")
+
+
+@generator("chewing_gum", size=(0.06, 0.1), synonyms=("chewing gum", "gum", "pack of gum"))
+def chewing_gum(d: Design) -> Traits:
+    color = d.choice(WRAPPERS[:-1])
+    label = d.choice([c for c in PRINTS if c != color])
+    if d.rng.random() < 0.5:
+        lx, ly, hz = d.uniform(0.065, 0.078), d.uniform(0.019, 0.024), d.uniform(0.011, 0.015)
+        d.box(
+            "sleeve", (lx / 2, ly / 2, hz / 2), (0, 0, hz / 2), "paper", color, solid_fraction=0.8
+        )
+        out = d.uniform(0.008, 0.015)
+        d.box(
+            "sticks",
+            (out / 2, ly / 2 - 0.0015, hz / 2 - 0.0015),
+            (lx / 2 + out / 2, 0, hz / 2),
+            "paper",
+            "silver",
+        )
+    else:
+        lx, ly, hz = d.uniform(0.075, 0.095), d.uniform(0.035, 0.05), d.uniform(0.012, 0.018)
+        d.box("pack", (lx / 2, ly / 2, hz / 2), (0, 0, hz / 2), "paper", color, solid_fraction=0.7)
+        d.box(
+            "flip_lid",
+            (lx * 0.2, ly / 2 + 0.0006, 0.0008),
+            (lx * 0.3, 0, hz + 0.0008),
+            "paper",
+            label,
+            visual_only=True,
+        )
+    _band(d, "label", (lx * 0.18, ly / 2 + 0.0006, hz / 2 + 0.0006), hz / 2, label, x=-lx * 0.1)
+    return Traits((color, label), "paper", "cuboid")
+
+
+@generator("biscuit", size=(0.045, 0.21), synonyms=("biscuit", "cookie"))
+def biscuit(d: Design) -> Traits:
+    kind = d.choice(["plain", "sandwich", "pack"])
+    if kind == "pack":
+        wrapper = d.choice(WRAPPERS)
+        lx, ly, hz = d.uniform(0.12, 0.17), d.uniform(0.05, 0.068), d.uniform(0.03, 0.045)
+        d.box(
+            "pack", (lx / 2, ly / 2, hz / 2), (0, 0, hz / 2), "paper", wrapper, solid_fraction=0.6
+        )
+        _crimps(d, lx / 2, ly, hz / 2, wrapper, 0.01)
+        d.upright("picture", ly * 0.35, 0.0012, hz, "paper", "golden", visual_only=True)
+        return Traits((wrapper, "golden"), "paper", "cuboid")
+    r = d.uniform(0.024, 0.034)
+    if kind == "sandwich":
+        dark = d.choice(["black", "brown"])
+        cream = d.choice(["white", "white", "pink", "yellow"])
+        t = d.uniform(0.004, 0.005)
+        d.upright("lower", r, t, 0.0, "organic", dark, solid_fraction=0.6)
+        d.upright("cream", r * 0.92, 0.004, t, "organic", cream, solid_fraction=0.6)
+        d.upright("upper", r, t, t + 0.004, "organic", dark, solid_fraction=0.6)
+        return Traits((dark, cream), "organic", "disk")
+    color = d.choice(["golden", "beige", "brown"])
+    t = d.uniform(0.008, 0.011)
+    d.upright("cookie", r, t, 0.0, "organic", color, solid_fraction=0.5)
+    for k in range(int(d.rng.integers(5, 9))):
+        a, rho = d.uniform(0, 2 * math.pi), r * math.sqrt(d.uniform(0.0, 0.7))
+        d.sphere(
+            f"chip_{k}",
+            0.0025,
+            (rho * math.cos(a), rho * math.sin(a), t),
+            "organic",
+            "black" if color == "brown" else "brown",
+            visual_only=True,
+        )
+    return Traits((color,), "organic", "disk")
+
+
+@generator("potato_chips", size=(0.15, 0.26), synonyms=("potato chips", "chips", "crisps"))
+def potato_chips(d: Design) -> Traits:
+    color = d.choice(WRAPPERS[:-1])
+    label = d.choice([c for c in ("yellow", "white", "red", "golden") if c != color])
+    if d.rng.random() < 0.5:  # a stand-up bag
+        w, t, hz = d.uniform(0.13, 0.18), d.uniform(0.05, 0.068), d.uniform(0.17, 0.23)
+        d.box(
+            "gusset",
+            (w * 0.45, t * 0.35, 0.006),
+            (0, 0, 0.006),
+            "plastic",
+            color,
+            solid_fraction=0.05,
+        )
+        d.box(
+            "core",
+            (w / 2, t * 0.12, hz / 2 - 0.01),
+            (0, 0, hz / 2),
+            "plastic",
+            color,
+            solid_fraction=0.2,
+        )
+        d.ellipsoid(
+            "puff",
+            (w / 2, t / 2, hz * 0.5 - 0.004),
+            (0, 0, hz / 2),
+            "plastic",
+            color,
+            solid_fraction=0.05,
+        )
+        d.box("seal", (w / 2, 0.003, 0.01), (0, 0, hz - 0.01), "plastic", color)
+        for k in range(int(w / 0.008)):
+            x = -w / 2 + 0.004 + k * 0.008
+            d.add(
+                f"serration_{k}",
+                "box",
+                (0.0028, 0.0031, 0.0028),
+                (x, 0, hz - 0.0005),
+                "plastic",
+                "silver",
+                quat=axis_angle_quat((0, 1, 0), math.pi / 4),
+                visual_only=True,
+            )
+        _print(d, "chip_picture", w * 0.27, t, hz * 0.45, label)
+        return Traits((color, label), "plastic", "irregular")
+    r, hz = d.uniform(0.033, 0.035), d.uniform(0.17, 0.24)
+    d.upright("rim", r * 0.97, 0.005, 0.0, "aluminium", "silver")
+    d.upright("tube", r, hz - 0.02, 0.005, "paper", color, solid_fraction=0.33)
+    d.upright("lid", r + 0.0012, 0.015, hz - 0.015, "plastic", d.choice(["transparent", color]))
+    d.upright("label", r + 0.0008, hz * 0.3, hz * 0.3, "paper", label, visual_only=True)
+    return Traits((color, label), "paper", "cylinder")
+
+
+@generator("chocolate", size=(0.08, 0.17), synonyms=("chocolate", "chocolate bar"))
+def chocolate(d: Design) -> Traits:
+    wrapper = d.choice(WRAPPERS[:-2] + ["golden"])
+    if d.rng.random() < 0.5:  # a tablet, half unwrapped
+        nx, ny = int(d.rng.integers(4, 7)), int(d.rng.integers(2, 4))
+        cell = d.uniform(0.0205, 0.0225)
+        lx, ly, t = nx * cell, ny * cell, d.uniform(0.004, 0.006)
+        d.box("slab", (lx / 2, ly / 2, t / 2), (0, 0, t / 2), "organic", "brown")
+        for i in range(nx):
+            for j in range(ny):
+                pos = ((i - (nx - 1) / 2) * cell, (j - (ny - 1) / 2) * cell, t + 0.002)
+                d.box(
+                    f"piece_{i}_{j}",
+                    (cell / 2 - 0.0015, cell / 2 - 0.0015, 0.002),
+                    pos,
+                    "organic",
+                    "brown",
+                )
+        cover = lx * d.uniform(0.35, 0.55)
+        d.box(
+            "wrapper",
+            (cover / 2, ly / 2 + 0.001, t / 2 + 0.003),
+            (-lx / 2 + cover / 2, 0, t / 2 + 0.002),
+            "paper",
+            wrapper,
+            solid_fraction=0.1,
+        )
+        d.box(
+            "foil",
+            (0.0015, ly / 2 + 0.0012, t / 2 + 0.0032),
+            (-lx / 2 + cover, 0, t / 2 + 0.002),
+            "aluminium",
+            "silver",
+            visual_only=True,
+        )
+        return Traits(("brown", wrapper), "organic", "flat")
+    label = d.choice([c for c in PRINTS if c != wrapper])
+    lx, ly, hz = d.uniform(0.08, 0.12), d.uniform(0.028, 0.04), d.uniform(0.012, 0.018)
+    d.box("bar", (lx / 2, ly / 2, hz / 2), (0, 0, hz / 2), "plastic", wrapper)
+    _crimps(d, lx / 2, ly * 0.9, hz / 2, wrapper, 0.008)
+    _band(d, "brand", (lx * 0.25, ly / 2 + 0.0006, hz / 2 + 0.0006), hz / 2, label)
+    return Traits((wrapper, label), "plastic", "cuboid")
+
+
+@generator(
+    "cheese_sticks", size=(0.08, 0.15), synonyms=("cheese sticks", "string cheese", "cheese stick")
+)
+def cheese_sticks(d: Design) -> Traits:
+    cheese = d.choice(["white", "white", "yellow", "orange"])
+    wrap = d.choice(["red", "blue", "green", "yellow", "purple"])
+    r, length = d.uniform(0.0085, 0.011), d.uniform(0.085, 0.11)
+    count = d.choice([1, 1, 2, 3])
+    for k in range(count):
+        y = (k - (count - 1) / 2) * 2 * r
+        d.rod(f"stick_{k}", r, length, (0, y, r), "organic", cheese, capsule=True)
+        d.rod(f"print_{k}", r + 0.0006, length * 0.45, (0, y, r), "plastic", wrap, visual_only=True)
+    _crimps(d, length / 2 - 0.002, 2 * r * count, r, "transparent", 0.01)
+    if count > 1:
+        d.box(
+            "sleeve",
+            (0.012, count * r + 0.001, r + 0.001),
+            (length * 0.3, 0, r),
+            "paper",
+            "white",
+            solid_fraction=0.1,
+        )
+    return Traits((cheese, wrap), "organic", "elongated")

@@ -1,3 +1,315 @@
-"""livingroom generators."""
+"""Living-room ornaments."""
 
 from __future__ import annotations
+
+import math
+
+from ..design import Design, Traits
+from ..parts import X_TO_Z, axis_angle_quat
+from .kitchenware import segment
+from .registry import generator
+
+
+def _cactus(d: Design, z: float) -> None:
+    r, h = d.uniform(0.018, 0.026), d.uniform(0.1, 0.16)
+    d.upright("trunk", r, h - r, z - 0.01, "organic", "green")
+    d.sphere("crown", r, (0, 0, z - 0.01 + h - r), "organic", "green")
+    for k, sign in enumerate((-1, 1)[: d.choice([1, 2])]):
+        zk = z + h * d.uniform(0.3, 0.45)
+        reach = r + d.uniform(0.012, 0.018)
+        d.rod(f"arm_{k}", r * 0.55, reach, (0, sign * reach / 2, zk), "organic", "green", axis="y")
+        d.add(
+            f"arm_tip_{k}",
+            "capsule",
+            (r * 0.55, h * 0.12),
+            (0, sign * reach, zk + h * 0.12),
+            "organic",
+            "green",
+            quat=X_TO_Z,
+        )
+    d.sphere("flower", r * 0.45, (0, 0, z - 0.01 + h), "organic", "pink", visual_only=True)
+
+
+def _leaves(d: Design, z: float, radius: float, blades: bool) -> None:
+    """Broad leaves fanning out, or the tall upright blades of a snake plant."""
+    n = d.choice([5, 6, 7] if blades else [6, 7, 8, 9])
+    for k in range(n):
+        a = 2 * math.pi * k / n + d.uniform(-0.3, 0.3)
+        if blades:
+            length, lean = d.uniform(0.15, 0.25), d.uniform(0.05, 0.25)
+            cross = (d.uniform(0.009, 0.013), 0.002)
+        else:
+            length, lean = d.uniform(0.08, 0.13), d.uniform(0.5, 1.0)
+            cross = (d.uniform(0.018, 0.026), 0.0025)
+        reach = length * math.sin(lean)
+        base = (radius * 0.3 * math.cos(a), radius * 0.3 * math.sin(a), z)
+        tip = (reach * math.cos(a), reach * math.sin(a), z + length * math.cos(lean))
+        shape = "box" if blades else "ellipsoid"
+        segment(d, f"leaf_{k}", shape, base, tip, cross, "organic", "green")
+
+
+@generator(
+    "houseplant",
+    size=(0.15, 0.4),
+    synonyms=("houseplant", "potted plant", "plant"),
+    graspable=False,
+)
+def houseplant(d: Design) -> Traits:
+    material, pot = d.choice(
+        [
+            ("ceramic", "orange"),
+            ("ceramic", "brown"),
+            ("ceramic", "white"),
+            ("ceramic", "gray"),
+            ("ceramic", "blue"),
+            ("plastic", "black"),
+            ("plastic", "white"),
+        ]
+    )
+    r, h = d.uniform(0.04, 0.055), d.uniform(0.07, 0.11)
+    spread = d.uniform(0.008, 0.015)
+    flare = math.atan2(spread, h)
+    d.upright("pot_floor", r + 0.006, 0.008, 0.0, material, pot)
+    d.wall("pot", r, 0.006, h - 0.008, 0.008, material, pot, segments=16, flare=flare)
+    d.wall("pot_rim", r + spread - 0.002, 0.01, 0.016, h - 0.016, material, pot, segments=16)
+    soil = h - 0.012
+    d.upright("soil", r, soil - 0.008, 0.008, "organic", "brown", solid_fraction=0.7)
+    d.upright("soil_top", r + spread * 0.85, 0.003, soil - 0.003, "organic", "brown")
+    kind = d.choice(["leafy", "leafy", "snake", "cactus"])
+    if kind == "cactus":
+        _cactus(d, soil)
+    else:
+        _leaves(d, soil, r, blades=kind == "snake")
+    return Traits(("green", pot), material, "irregular")
+
+
+@generator(
+    "watering_can",
+    size=(0.2, 0.42),
+    synonyms=("watering can", "watering pot"),
+)
+def watering_can(d: Design) -> Traits:
+    material, color = d.choice(
+        [
+            ("plastic", "green"),
+            ("plastic", "blue"),
+            ("plastic", "red"),
+            ("plastic", "yellow"),
+            ("plastic", "white"),
+            ("metal", "silver"),
+            ("metal", "gray"),
+        ]
+    )
+    fill = 0.1 if material == "plastic" else 0.02
+    w, core, h = d.uniform(0.06, 0.074), d.uniform(0.03, 0.06), d.uniform(0.1, 0.15)
+    d.box("body", (core, w / 2, h / 2), (0, 0, h / 2), material, color, solid_fraction=fill)
+    for k, sign in enumerate((-1, 1)):
+        d.upright(
+            f"body_end_{k}",
+            w / 2,
+            h,
+            0.0,
+            material,
+            color,
+            xy=(sign * core, 0),
+            solid_fraction=fill,
+        )
+    d.upright("opening", w * 0.3, 0.004, h, material, "black", xy=(-core * 0.6, 0))
+    front = core + w / 2
+    elev, length = d.uniform(0.6, 0.9), d.uniform(0.12, 0.18)
+    root = (front - 0.01, 0, h * 0.2)
+    tip = (root[0] + length * math.cos(elev), 0, root[2] + length * math.sin(elev))
+    segment(d, "spout", "cylinder", root, tip, d.uniform(0.007, 0.009), material, color)
+    rose = (tip[0] + 0.02 * math.cos(elev), 0, tip[2] + 0.02 * math.sin(elev))
+    rose_color = d.choice([color, "black", "silver"])
+    segment(d, "rose", "cylinder", tip, rose, 0.016, material, rose_color)
+    top = h + d.uniform(0.035, 0.05)
+    bar = (core * 0.5, 0, top)
+    back = (-front - 0.02, 0, top - 0.01)
+    segment(d, "handle", "capsule", bar, back, 0.007, material, color)
+    segment(d, "handle_post", "capsule", (core * 0.5, 0, h - 0.005), bar, 0.007, material, color)
+    segment(
+        d, "handle_back", "capsule", back, (-front + 0.005, 0, h * 0.45), 0.007, material, color
+    )
+    colors = (color,) if rose_color == color else (color, rose_color)
+    return Traits(colors, material, "irregular")
+
+
+@generator(
+    "diffuser_bottle",
+    size=(0.2, 0.38),
+    synonyms=("diffuser bottle", "reed diffuser"),
+)
+def diffuser_bottle(d: Design) -> Traits:
+    glass = d.choice(["transparent", "transparent", "brown", "white", "black"])
+    oil = d.choice(["yellow", "orange", "pink", "purple"])
+    collar = d.choice(["golden", "silver", "black"])
+    reed = d.choice([c for c in ("beige", "brown", "black", "white") if c != glass])
+    r, h = d.uniform(0.024, 0.033), d.uniform(0.07, 0.1)
+    if d.rng.random() < 0.5:
+        d.upright("body", r, h, 0.0, "glass", glass, solid_fraction=0.4)
+        d.upright("oil", r - 0.003, h * 0.6, 0.004, "organic", oil, visual_only=True)
+        shape = "cylinder"
+    else:
+        d.box("body", (r, r, h / 2), (0, 0, h / 2), "glass", glass, solid_fraction=0.4)
+        d.box(
+            "oil",
+            (r - 0.003, r - 0.003, h * 0.3),
+            (0, 0, 0.004 + h * 0.3),
+            "organic",
+            oil,
+            visual_only=True,
+        )
+        shape = "cuboid"
+    d.upright("neck", 0.009, 0.012, h, "glass", glass)
+    d.upright("collar", 0.012, 0.012, h + 0.008, "metal", collar, solid_fraction=0.3)
+    n = d.choice([5, 6, 7, 8])
+    for k in range(n):
+        length = d.uniform(0.19, 0.24)
+        lean = d.uniform(0.08, 0.4) * (1 if k % 2 else -1)
+        side = d.uniform(-0.025, 0.025)
+        base = (0.0, 0.0, h - 0.03)
+        tip = (length * math.sin(lean), side, h - 0.03 + length * math.cos(lean))
+        segment(d, f"reed_{k}", "cylinder", base, tip, 0.0018, "wood", reed)
+    return Traits((glass, reed), "glass", shape)
+
+
+def _tilted(d: Design, name, half, local, tilt, material, color, **kw) -> None:
+    """A box in the frame of a plate leaning back (towards -x) by ``tilt``."""
+    x, y, z = local
+    pos = (x * math.cos(tilt) - z * math.sin(tilt), y, x * math.sin(tilt) + z * math.cos(tilt))
+    d.add(name, "box", half, pos, material, color, quat=axis_angle_quat((0, 1, 0), -tilt), **kw)
+
+
+@generator(
+    "photo_frame",
+    size=(0.12, 0.21),
+    synonyms=("photo frame", "picture frame"),
+)
+def photo_frame(d: Design) -> Traits:
+    material, color = d.choice(
+        [
+            ("wood", "brown"),
+            ("wood", "black"),
+            ("wood", "white"),
+            ("wood", "beige"),
+            ("aluminium", "silver"),
+            ("aluminium", "golden"),
+            ("plastic", "pink"),
+        ]
+    )
+    kw = dict(solid_fraction=0.4 if material == "aluminium" else 1.0)
+    long, short = d.uniform(0.15, 0.2), d.uniform(0.11, 0.15)
+    hw, hh = (short / 2, long / 2) if d.rng.random() < 0.5 else (long / 2, short / 2)
+    b, ft, tilt = d.uniform(0.012, 0.02), d.uniform(0.01, 0.016), d.uniform(0.15, 0.22)
+    for k, sign in enumerate((-1, 1)):
+        _tilted(
+            d,
+            f"rail_{k}",
+            (ft / 2, hw, b / 2),
+            (0, 0, sign * (hh - b / 2)),
+            tilt,
+            material,
+            color,
+            **kw,
+        )
+        _tilted(
+            d,
+            f"stile_{k}",
+            (ft / 2, b / 2, hh - b),
+            (0, sign * (hw - b / 2), 0),
+            tilt,
+            material,
+            color,
+            **kw,
+        )
+    _tilted(
+        d, "backing", (0.0015, hw - b, hh - b), (-ft / 2 + 0.0015, 0, 0), tilt, "paper", "black"
+    )
+    sky, ground = d.choice([("blue", "green"), ("blue", "beige"), ("white", "gray")])
+    split = d.uniform(-0.3, 0.1) * hh
+    top = (hh - b - split) / 2
+    _tilted(
+        d,
+        "photo_sky",
+        (0.0003, hw - b, top),
+        (0, 0, split + top),
+        tilt,
+        "paper",
+        sky,
+        visual_only=True,
+    )
+    bottom = (hh - b + split) / 2
+    _tilted(
+        d,
+        "photo_ground",
+        (0.0003, hw - b, bottom),
+        (0, 0, split - bottom),
+        tilt,
+        "paper",
+        ground,
+        visual_only=True,
+    )
+    floor = -(ft / 2 * math.sin(tilt) + hh * math.cos(tilt))
+    attach = (-ft / 2 * math.cos(tilt), 0.0, -ft / 2 * math.sin(tilt))
+    foot_x = attach[0] - hh * 0.25 - 0.01
+    pitch = math.atan2(attach[2] - floor, attach[0] - foot_x)
+    foot = (foot_x, 0.0, floor + 0.0015 * math.cos(pitch))
+    segment(d, "leg", "box", attach, foot, (d.uniform(0.008, 0.012), 0.0015), "paper", "black")
+    return Traits((color,), material, "flat")
+
+
+@generator(
+    "candle_holder",
+    size=(0.06, 0.15),
+    synonyms=("candle holder", "votive holder", "tealight holder"),
+    container=True,
+)
+def candle_holder(d: Design) -> Traits:
+    material, color = d.choice(
+        [
+            ("glass", "transparent"),
+            ("glass", "transparent"),
+            ("glass", "red"),
+            ("glass", "blue"),
+            ("glass", "purple"),
+            ("metal", "golden"),
+            ("metal", "silver"),
+            ("ceramic", "white"),
+        ]
+    )
+    kw = dict(solid_fraction=0.15) if material == "metal" else {}
+    r = d.uniform(0.036, 0.044)
+    h = d.uniform(0.06, 0.085) if material == "glass" else d.uniform(0.058, 0.068)
+    z = 0.0
+    if d.rng.random() < 0.4:
+        stem = d.uniform(0.02, 0.04)
+        d.upright("foot", r * 0.9, 0.005, 0.0, material, color, **kw)
+        d.upright("stem", 0.007, stem, 0.005, material, color, **kw)
+        z = 0.005 + stem
+    base = d.uniform(0.008, 0.012)
+    d.upright("base", r + 0.003, base, z, material, color, **kw)
+    glass = material == "glass"
+    flare = d.uniform(0.0, 0.12) if glass else 0.0
+    d.wall("wall", r, 0.004, h - base, z + base, material, color, segments=16, flare=flare)
+    for k in range(0 if glass else 16):  # the pierced holes of a metal or ceramic lantern
+        row, col = divmod(k, 8)
+        a, zk = (col + 0.5 * row) * math.pi / 4, z + base + (h - base) * (0.35 + 0.3 * row)
+        out = (math.cos(a), math.sin(a))
+        segment(
+            d,
+            f"hole_{k}",
+            "cylinder",
+            (out[0] * (r - 0.001), out[1] * (r - 0.001), zk),
+            (out[0] * (r + 0.0045), out[1] * (r + 0.0045), zk),
+            0.004,
+            material,
+            "black",
+            visual_only=True,
+        )
+    floor = z + base
+    d.upright("tealight", 0.019, 0.015, floor, "metal", "silver", solid_fraction=0.15)
+    d.upright("wax", 0.0175, 0.001, floor + 0.015, "organic", "white")
+    d.upright("wick", 0.0008, 0.004, floor + 0.016, "fabric", "black", visual_only=True)
+    d.interior((r * 0.5, r * 0.5), floor_z=floor + 0.016, rim_z=z + h)
+    return Traits((color,), material, "cylinder")

@@ -1,3 +1,555 @@
-"""receptacles generators."""
+"""Receptacles: destinations that objects are placed into or onto."""
 
 from __future__ import annotations
+
+import math
+
+from ..design import Design, Traits
+from ..parts import axis_angle_quat, quat_mul
+from .registry import generator
+
+PLASTICS = ["red", "blue", "green", "yellow", "white", "gray", "black", "pink", "orange"]
+
+
+def _frame(
+    d: Design,
+    name: str,
+    hx: float,
+    hy: float,
+    width: float,
+    z0: float,
+    height: float,
+    material: str,
+    color: str,
+    **kw,
+) -> None:
+    """Four boxes along the edges of a rectangle (outer half extents hx, hy) from z0 up."""
+    zc = z0 + height / 2
+    for k, s in enumerate((-1, 1)):
+        d.box(
+            f"{name}_x{k}",
+            (width / 2, hy, height / 2),
+            (s * (hx - width / 2), 0, zc),
+            material,
+            color,
+            **kw,
+        )
+        d.box(
+            f"{name}_y{k}",
+            (hx - width, width / 2, height / 2),
+            (0, s * (hy - width / 2), zc),
+            material,
+            color,
+            **kw,
+        )
+
+
+def _tray(
+    d: Design, hx: float, hy: float, h: float, t: float, material: str, color: str, **kw
+) -> None:
+    """An open rectangular container: a floor and four walls, all ``t`` thick."""
+    d.box("floor", (hx, hy, t / 2), (0, 0, t / 2), material, color, **kw)
+    _frame(d, "wall", hx, hy, t, t, h - t, material, color, **kw)
+
+
+def _vessel(
+    d: Design,
+    r: float,
+    h: float,
+    t: float,
+    floor: float,
+    material: str,
+    color: str,
+    flare: float = 0.0,
+    z0: float = 0.0,
+    segments: int = 16,
+) -> float:
+    """A round open vessel (floor disc and wall) on z0; returns the outer radius at the rim."""
+    d.upright("floor", r + t, floor, z0, material, color)
+    d.wall("wall", r, t, h - floor, z0 + floor, material, color, segments=segments, flare=flare)
+    return r + t + math.tan(flare) * (h - floor)
+
+
+def _metal_or_plastic(d: Design, colors: list[str]) -> tuple[str, str]:
+    """Thin aluminium (silver) one time in three, else coloured plastic."""
+    if d.rng.random() < 1 / 3:
+        return "aluminium", "silver"
+    return "plastic", d.choice(colors)
+
+
+def _rim_ring(
+    d: Design,
+    top: float,
+    t: float,
+    height: float,
+    z_top: float,
+    material: str,
+    color: str,
+    segments: int,
+) -> None:
+    """A thickened ring around the rim of a round vessel whose outer rim radius is ``top``."""
+    d.wall(
+        "rim",
+        top - t - 0.001,
+        t + 0.004,
+        height,
+        z_top - height,
+        material,
+        color,
+        segments=segments,
+    )
+
+
+def _round_interior(d: Design, r: float, floor_z: float, rim_z: float) -> None:
+    d.interior((r * 0.7, r * 0.7), floor_z=floor_z, rim_z=rim_z)
+
+
+def _ear_handles(
+    d: Design,
+    x: float,
+    z: float,
+    span: float,
+    lift: float,
+    material: str,
+    color: str,
+    radius: float = 0.005,
+) -> None:
+    """A loop handle at each end of the x axis: two posts and a bar above ``z``."""
+    for k, sign in enumerate((-1, 1)):
+        for j, y in enumerate((-span / 2, span / 2)):
+            d.upright(
+                f"post_{k}{j}", radius, lift + 0.015, z - 0.015, material, color, xy=(sign * x, y)
+            )
+        d.rod(
+            f"bar_{k}",
+            radius,
+            span + 2 * radius,
+            (sign * x, 0, z + lift),
+            material,
+            color,
+            axis="y",
+        )
+
+
+@generator("basket", size=(0.18, 0.33), graspable=False, container=True)
+def basket(d: Design) -> Traits:
+    material = d.choice(["wicker", "wicker", "wicker", "plastic"])
+    if material == "wicker":
+        color = d.choice(["brown", "beige", "golden"])
+        weave = "beige" if color == "brown" else "brown"
+        t = 0.007
+    else:
+        color = d.choice(["blue", "green", "red", "white", "pink"])
+        weave = "white" if color != "white" else "gray"
+        t = 0.004
+    h = d.uniform(0.07, 0.12)
+    if d.rng.random() < 0.6:
+        hx, hy = d.uniform(0.1, 0.135), d.uniform(0.07, 0.1)
+        _tray(d, hx, hy, h, t, material, color)
+        for k in range(int(h / 0.03)):
+            _frame(
+                d,
+                f"weave_{k}",
+                hx + 0.001,
+                hy + 0.001,
+                t + 0.002,
+                0.02 + k * 0.03,
+                0.008,
+                material,
+                weave,
+                visual_only=True,
+            )
+        _frame(d, "rim", hx + 0.002, hy + 0.002, t + 0.004, h - 0.008, 0.01, material, weave)
+        d.interior((hx - t - 0.004, hy - t - 0.004), floor_z=t, rim_z=h)
+        x_handle, shape = hx, "cuboid"
+    else:
+        r = d.uniform(0.075, 0.1)
+        flare = d.uniform(0.12, 0.25)
+        top = _vessel(d, r, h, t, t, material, color, flare=flare, segments=18)
+        _rim_ring(d, top + 0.001, t, 0.01, h + 0.002, material, weave, 18)
+        _round_interior(d, r, t, h)
+        x_handle, shape = top, "cylinder"
+    _ear_handles(
+        d, x_handle + 0.004, h, d.uniform(0.05, 0.07), d.uniform(0.02, 0.035), material, weave
+    )
+    return Traits((color, weave), material, shape)
+
+
+@generator(
+    "waste_bin",
+    size=(0.2, 0.32),
+    synonyms=("waste bin", "trash can", "garbage bin", "dustbin"),
+    graspable=False,
+    container=True,
+)
+def waste_bin(d: Design) -> Traits:
+    material, color = _metal_or_plastic(d, ["gray", "black", "white", "blue", "green"])
+    rim = d.choice([color, "black"])  # a bin liner folded over the rim, or a plain rim
+    h, t = d.uniform(0.2, 0.29), 0.0015 if material == "aluminium" else 0.003
+    if d.rng.random() < 0.6:
+        r = d.uniform(0.085, 0.105)
+        top = _vessel(d, r, h, t, 0.004, material, color, flare=d.uniform(0.03, 0.08), segments=20)
+        _rim_ring(d, top, t, 0.02, h + 0.002, material, rim, 20)
+        _round_interior(d, r, 0.004, h)
+        shape = "cylinder"
+    else:
+        hx, hy = d.uniform(0.09, 0.11), d.uniform(0.075, 0.1)
+        _tray(d, hx, hy, h, t, material, color)
+        _frame(d, "rim", hx + 0.002, hy + 0.002, t + 0.004, h - 0.018, 0.02, material, rim)
+        d.interior((hx - 0.01, hy - 0.01), floor_z=t, rim_z=h)
+        shape = "cuboid"
+    return Traits(tuple(dict.fromkeys((color, rim))), material, shape)
+
+
+@generator(
+    "frying_pan",
+    size=(0.24, 0.34),
+    synonyms=("frying pan", "skillet", "fry pan"),
+    graspable=False,
+    container=True,
+)
+def frying_pan(d: Design) -> Traits:
+    color = d.choice(["black", "black", "gray", "red", "silver", "blue"])
+    grip = d.choice(["black", "black", "brown"])
+    r, h, t = d.uniform(0.06, 0.075), d.uniform(0.035, 0.045), 0.003
+    top = _vessel(d, r, h, t, 0.004, "aluminium", color, flare=d.uniform(0.55, 0.7), segments=20)
+    length, pitch = d.uniform(0.1, 0.125), d.uniform(0.12, 0.25)
+    start = (top - 0.006, 0.0, h - 0.01)
+    d.box("bracket", (0.012, 0.008, 0.006), start, "aluminium", "silver")
+    quat = axis_angle_quat((0, 1, 0), -pitch)
+    center = (
+        start[0] + 0.01 + math.cos(pitch) * length / 2,
+        0.0,
+        start[2] + math.sin(pitch) * length / 2,
+    )
+    material = "wood" if grip == "brown" else "plastic"
+    d.add("handle", "capsule", (0.01, length / 2 - 0.01), center, material, grip, quat=quat)
+    _round_interior(d, r, 0.004, h)
+    return Traits(tuple(dict.fromkeys((color, grip))), "aluminium", "disk")
+
+
+@generator(
+    "cooking_pot",
+    size=(0.18, 0.3),
+    synonyms=("cooking pot", "stockpot", "soup pot"),
+    graspable=False,
+    container=True,
+)
+def cooking_pot(d: Design) -> Traits:
+    color = d.choice(["silver", "silver", "red", "blue", "black", "white", "green"])
+    grips = d.choice([color, "black"]) if color == "silver" else d.choice([color, "silver"])
+    r, h, t = d.uniform(0.07, 0.095), d.uniform(0.08, 0.13), 0.003
+    top = _vessel(d, r, h, t, 0.005, "aluminium", color, segments=20)
+    d.wall("rim", r - 0.001, t + 0.003, 0.006, h - 0.006, "aluminium", color, segments=20)
+    reach, span = d.uniform(0.022, 0.032), d.uniform(0.045, 0.06)
+    z = h - d.uniform(0.015, 0.03)
+    for k, sign in enumerate((-1, 1)):
+        for j, y in enumerate((-span / 2, span / 2)):
+            d.box(
+                f"bracket_{k}{j}",
+                (reach / 2, 0.004, 0.004),
+                (sign * (top + reach / 2), y, z),
+                "aluminium",
+                grips,
+            )
+        d.rod(
+            f"grip_{k}",
+            0.006,
+            span + 0.012,
+            (sign * (top + reach), 0, z),
+            "aluminium",
+            grips,
+            axis="y",
+        )
+    _round_interior(d, r, 0.005, h)
+    return Traits(tuple(dict.fromkeys((color, grips))), "aluminium", "cylinder")
+
+
+@generator(
+    "cardboard_box",
+    size=(0.18, 0.34),
+    synonyms=("cardboard box", "shipping box", "moving box"),
+    graspable=False,
+    container=True,
+)
+def cardboard_box(d: Design) -> Traits:
+    hx, hy, h, t = d.uniform(0.09, 0.13), d.uniform(0.07, 0.1), d.uniform(0.08, 0.14), 0.004
+    _tray(d, hx, hy, h, t, "paper", "brown", solid_fraction=0.5)
+    depth = hy * 0.9
+    for k, sign in enumerate((-1, 1)):  # flaps standing open, splayed outwards
+        tilt = d.uniform(0.15, 0.35)
+        quat = axis_angle_quat((1, 0, 0), -sign * tilt)
+        pos = (0, sign * (hy - t / 2 + math.sin(tilt) * depth / 2), h + math.cos(tilt) * depth / 2)
+        d.add(
+            f"flap_y{k}",
+            "box",
+            (hx, t / 2, depth / 2),
+            pos,
+            "paper",
+            "brown",
+            quat=quat,
+            solid_fraction=0.5,
+        )
+        tilt = d.uniform(0.15, 0.35)
+        quat = axis_angle_quat((0, 1, 0), sign * tilt)
+        pos = (sign * (hx - t / 2 + math.sin(tilt) * depth / 2), 0, h + math.cos(tilt) * depth / 2)
+        d.add(
+            f"flap_x{k}",
+            "box",
+            (t / 2, hy - t, depth / 2),
+            pos,
+            "paper",
+            "brown",
+            quat=quat,
+            solid_fraction=0.5,
+        )
+        d.box(
+            f"tape_{k}",
+            (0.025, 0.0006, 0.02),
+            (0, sign * (hy + 0.0006), h - 0.02),
+            "plastic",
+            "beige",
+            visual_only=True,
+        )
+    d.box(
+        "label",
+        (0.0006, hy * 0.4, h * 0.2),
+        (hx + 0.0006, 0, h * 0.5),
+        "paper",
+        "white",
+        visual_only=True,
+    )
+    d.interior((hx - t - 0.004, hy - t - 0.004), floor_z=t, rim_z=h)
+    return Traits(("brown",), "paper", "cuboid")
+
+
+@generator(
+    "baking_tray",
+    size=(0.25, 0.34),
+    synonyms=("baking tray", "baking sheet", "sheet pan"),
+    graspable=False,
+    container=True,
+)
+def baking_tray(d: Design) -> Traits:
+    color = d.choice(["silver", "silver", "black", "gray"])
+    hx, hy, h, t = d.uniform(0.13, 0.165), d.uniform(0.09, 0.115), d.uniform(0.016, 0.025), 0.002
+    _tray(d, hx, hy, h, t, "aluminium", color)
+    _frame(d, "rolled_rim", hx + 0.002, hy + 0.002, 0.007, h - 0.005, 0.005, "aluminium", color)
+    colors: tuple[str, ...] = (color,)
+    if d.rng.random() < 0.4:
+        paper = d.choice(["white", "beige"])
+        d.box(
+            "baking_paper",
+            (hx - 0.006, hy - 0.006, 0.0004),
+            (0, 0, t + 0.0004),
+            "paper",
+            paper,
+            visual_only=True,
+        )
+        colors = (color, paper)
+    d.interior((hx - 0.01, hy - 0.01), floor_z=t, rim_z=h)
+    return Traits(colors, "aluminium", "flat")
+
+
+def _lipped_slab(
+    d: Design, hx: float, hy: float, thick: float, material: str, color: str, lip: str, round_: bool
+) -> None:
+    """A flat board or mat with a low raised edge around its top surface."""
+    if round_:
+        d.upright("slab", hx, thick, 0.0, material, color)
+        d.wall("lip", hx - 0.008, 0.008, 0.0025, thick, material, lip, segments=20)
+        d.interior((hx * 0.65, hx * 0.65), floor_z=thick, rim_z=thick + 0.0025)
+    else:
+        d.box("slab", (hx, hy, thick / 2), (0, 0, thick / 2), material, color)
+        _frame(d, "lip", hx, hy, 0.008, thick, 0.0025, material, lip)
+        d.interior((hx - 0.012, hy - 0.012), floor_z=thick, rim_z=thick + 0.0025)
+
+
+@generator(
+    "cutting_board",
+    size=(0.2, 0.32),
+    synonyms=("cutting board", "chopping board"),
+    graspable=False,
+    container=True,
+)
+def cutting_board(d: Design) -> Traits:
+    material = d.choice(["wood", "wood", "plastic"])
+    color = d.choice(
+        ["brown", "beige", "golden"] if material == "wood" else ["white", "green", "blue", "red"]
+    )
+    thick = d.uniform(0.012, 0.02)
+    round_ = d.rng.random() < 0.3
+    hx = d.uniform(0.1, 0.12) if round_ else d.uniform(0.1, 0.13)
+    hy = hx if round_ else d.uniform(0.075, 0.1)
+    _lipped_slab(d, hx, hy, thick, material, color, color, round_)
+    tab = d.uniform(0.03, 0.045)
+    d.box(
+        "handle",
+        (tab / 2 + 0.005, 0.028, thick / 2),
+        (hx + tab / 2 - 0.005, 0, thick / 2),
+        material,
+        color,
+    )
+    d.upright(
+        "hang_hole",
+        0.008,
+        0.0008,
+        thick,
+        material,
+        "black",
+        xy=(hx + tab / 2 - 0.004, 0),
+        visual_only=True,
+    )
+    return Traits((color,), material, "disk" if round_ else "flat")
+
+
+@generator(
+    "lunch_box",
+    size=(0.16, 0.26),
+    synonyms=("lunch box", "lunchbox", "bento box"),
+    container=True,
+)
+def lunch_box(d: Design) -> Traits:
+    color = d.choice(PLASTICS)
+    lid = d.choice([color, "white", "transparent", "blue"])
+    hx, hy, h, t = d.uniform(0.08, 0.1), d.uniform(0.055, 0.07), d.uniform(0.045, 0.065), 0.003
+    _tray(d, hx, hy, h, t, "plastic", color)
+    divider = hx * d.uniform(0.15, 0.35)
+    d.box(
+        "divider",
+        (t / 2, hy - t, (h - t) / 2 - 0.004),
+        (divider, 0, (h + t) / 2 - 0.004),
+        "plastic",
+        color,
+    )
+    lean = d.uniform(0.12, 0.3)  # the hinged lid stands open behind the box
+    quat = axis_angle_quat((1, 0, 0), lean)
+    pos = (0, -hy - 0.002 - math.sin(lean) * hy, h + math.cos(lean) * hy)
+    d.add("lid", "box", (hx, 0.002, hy), pos, "plastic", lid, quat=quat)
+    for k, sign in enumerate((-1, 1)):
+        d.box(
+            f"latch_{k}",
+            (0.012, 0.002, 0.008),
+            (sign * hx * 0.5, hy + 0.002, h - 0.012),
+            "plastic",
+            lid,
+        )
+    floor_x0 = -hx + t
+    half_x = (divider - t / 2 - floor_x0) / 2 - 0.003
+    d.interior(
+        (half_x, hy - t - 0.003), floor_z=t, rim_z=h, center=(floor_x0 + 0.003 + half_x, 0.0)
+    )
+    return Traits(tuple(dict.fromkeys((color, lid))), "plastic", "cuboid")
+
+
+@generator(
+    "bucket", size=(0.16, 0.27), synonyms=("bucket", "pail"), graspable=False, container=True
+)
+def bucket(d: Design) -> Traits:
+    material, color = _metal_or_plastic(d, ["red", "blue", "yellow", "green", "orange", "white"])
+    r, h = d.uniform(0.065, 0.085), d.uniform(0.13, 0.19)
+    t = 0.0015 if material == "aluminium" else 0.003
+    top = _vessel(d, r, h, t, 0.005, material, color, flare=d.uniform(0.1, 0.18), segments=18)
+    _rim_ring(d, top, t, 0.012, h, material, color, 18)
+    bail = top + 0.008
+    z = h - 0.02
+    for k, sign in enumerate((-1, 1)):
+        d.rod(f"ear_{k}", 0.008, 0.012, (sign * (top + 0.002), 0, z), material, color)
+    fold = d.uniform(1.2, 1.35)  # the bail handle leans back over the rim
+    tilt = axis_angle_quat((1, 0, 0), fold)
+    n = 7
+    for k in range(n):
+        a0, a1 = math.pi * k / n, math.pi * (k + 1) / n
+        mid, chord = (a0 + a1) / 2, 2 * bail * math.sin(math.pi / (2 * n))
+        x, up = bail * math.cos(mid), bail * math.sin(mid)
+        quat = quat_mul(tilt, axis_angle_quat((0, 1, 0), -(mid + math.pi / 2)))
+        pos = (x, -up * math.sin(fold), z + up * math.cos(fold))
+        d.add(
+            f"bail_{k}", "cylinder", (0.0022, chord / 2 + 0.001), pos, "metal", "silver", quat=quat
+        )
+    _round_interior(d, r, 0.005, h)
+    return Traits((color,), material, "cylinder")
+
+
+@generator(
+    "colander",
+    size=(0.2, 0.32),
+    synonyms=("colander", "strainer"),
+    graspable=False,
+    container=True,
+)
+def colander(d: Design) -> Traits:
+    material, color = _metal_or_plastic(d, ["red", "green", "blue", "white", "yellow"])
+    holes = "black" if color in ("silver", "white", "yellow") else "white"
+    r, h, t = d.uniform(0.045, 0.055), d.uniform(0.065, 0.085), 0.0025
+    flare, foot = d.uniform(0.55, 0.7), 0.012
+    d.wall("foot", r * 0.75, 0.004, foot, 0.0, material, color, segments=14)
+    top = _vessel(d, r, h, t, 0.004, material, color, flare=flare, z0=foot, segments=20)
+    for ring, frac in enumerate((0.3, 0.55, 0.8)):
+        z = foot + 0.004 + frac * (h - 0.004)
+        rho = r + t / 2 + math.tan(flare) * (z - foot - 0.004)
+        count = int(2 * math.pi * rho / 0.016)
+        for k in range(count):
+            a = 2 * math.pi * (k + 0.5 * ring) / count
+            d.sphere(
+                f"hole_{ring}_{k}",
+                0.0025,
+                (rho * math.cos(a), rho * math.sin(a), z),
+                material,
+                holes,
+                visual_only=True,
+            )
+    for k in range(7):
+        a, rho = 2 * math.pi * k / 6, r * 0.55 if k < 6 else 0.0
+        d.sphere(
+            f"drain_{k}",
+            0.0025,
+            (rho * math.cos(a), rho * math.sin(a), foot + 0.004),
+            material,
+            holes,
+            visual_only=True,
+        )
+    for k, sign in enumerate((-1, 1)):
+        d.box(
+            f"handle_{k}",
+            (0.015, 0.022, 0.003),
+            (sign * (top + 0.012), 0, foot + h - 0.003),
+            material,
+            color,
+        )
+    _round_interior(d, r, foot + 0.004, foot + h)
+    return Traits((color,), material, "hemisphere")
+
+
+@generator(
+    "placemat",
+    size=(0.22, 0.32),
+    synonyms=("placemat", "place mat", "table mat"),
+    graspable=False,
+    container=True,
+)
+def placemat(d: Design) -> Traits:
+    material = d.choice(["fabric", "fabric", "plastic", "wicker", "wood"])
+    if material in ("wicker", "wood"):
+        color = d.choice(["beige", "golden", "brown"])
+    else:
+        color = d.choice(["red", "blue", "green", "white", "gray", "beige", "pink", "orange"])
+    hem = d.choice([color, "white", "black", "brown"])
+    round_ = d.rng.random() < 0.3
+    hx = d.uniform(0.115, 0.15) if round_ else d.uniform(0.13, 0.16)
+    hy = hx if round_ else d.uniform(0.095, 0.12)
+    _lipped_slab(d, hx, hy, 0.003, material, color, hem, round_)
+    if not round_:  # woven stripes or slats across the mat
+        stripe = "brown" if material in ("wicker", "wood") else hem
+        step = d.uniform(0.02, 0.04)
+        for k in range(int((2 * hx - 0.03) / step)):
+            x = -hx + 0.02 + k * step
+            d.box(
+                f"stripe_{k}",
+                (0.0015, hy - 0.01, 0.0003),
+                (x, 0, 0.003),
+                material,
+                stripe,
+                visual_only=True,
+            )
+    return Traits(tuple(dict.fromkeys((color, hem))), material, "disk" if round_ else "flat")

@@ -1,3 +1,548 @@
-"""stationery generators."""
+"""Office stationery and office tools."""
 
 from __future__ import annotations
+
+import math
+
+from ..design import Design, Traits
+from ..parts import axis_angle_quat
+from .desktop import BRIGHT
+from .registry import generator
+
+
+def slab(d: Design, name: str, half, z0: float, material: str, color: str, xy=(0.0, 0.0), **kw):
+    """A box standing on z = z0, centred at ``xy``."""
+    d.box(name, half, (xy[0], xy[1], z0 + half[2]), material, color, **kw)
+
+
+def flat_ring(
+    d: Design,
+    name: str,
+    radius: float,
+    width: float,
+    thick: float,
+    z0: float,
+    material: str,
+    color: str,
+    center=(0.0, 0.0),
+    segments: int = 12,
+    **kw,
+):
+    """A ring of boxes lying flat on z = z0 (a scissor loop, a vase shoulder)."""
+    chord = 2 * (radius + width / 2) * math.tan(math.pi / segments) * 1.02
+    for k in range(segments):
+        a = 2 * math.pi * k / segments
+        pos = (center[0] + radius * math.cos(a), center[1] + radius * math.sin(a), z0 + thick / 2)
+        d.box(f"{name}_{k}", (width / 2, chord / 2, thick / 2), pos, material, color, yaw=a, **kw)
+
+
+def open_box(d: Design, name: str, hx: float, hy: float, h: float, t: float, floor: float, *look):
+    """A rectangular container (floor and four walls) standing on z = 0; ``look``: material,
+    colour."""
+    slab(d, f"{name}_floor", (hx, hy, floor / 2), 0.0, *look)
+    wall_h = (h - floor) / 2
+    for sign in (-1, 1):
+        slab(
+            d,
+            f"{name}_wall_x{sign}",
+            (t / 2, hy, wall_h),
+            floor,
+            *look,
+            xy=(sign * (hx - t / 2), 0),
+        )
+        slab(
+            d,
+            f"{name}_wall_y{sign}",
+            (hx - t, t / 2, wall_h),
+            floor,
+            *look,
+            xy=(0, sign * (hy - t / 2)),
+        )
+
+
+def hex_rod(d: Design, name: str, apothem: float, length: float, center, material: str, color: str):
+    """A hexagonal prism along x with a flat face down (three overlapping boxes, mass exact)."""
+    side = 2 * apothem / math.sqrt(3)
+    for k in range(3):
+        quat = axis_angle_quat((1, 0, 0), k * math.pi / 3)
+        half = (length / 2, side / 2, apothem)
+        d.add(f"{name}_{k}", "box", half, center, material, color, quat=quat, solid_fraction=0.5)
+
+
+@generator("stapler", size=(0.12, 0.2))
+def stapler(d: Design) -> Traits:
+    body = d.choice(["black", "red", "blue", "gray", "silver", "green"])
+    base = d.choice(["black", "silver", "gray"])
+    material = "metal" if body == "silver" else "plastic"
+    lx, w = d.uniform(0.13, 0.18), d.uniform(0.032, 0.042)
+    base_t, arm_z, arm_t = 0.006, d.uniform(0.022, 0.028), d.uniform(0.014, 0.019)
+    slab(d, "base", (lx / 2, w / 2, base_t / 2), 0.0, "metal", base, solid_fraction=0.35)
+    anvil = (lx / 2 - 0.016, 0, base_t + 0.0004)
+    d.box("anvil", (0.008, w * 0.25, 0.0004), anvil, "metal", "silver", visual_only=True)
+    hinge = (lx * 0.07, w * 0.4, (arm_z - base_t) / 2)
+    slab(d, "hinge", hinge, base_t, "metal", base, xy=(-lx / 2 + hinge[0], 0), solid_fraction=0.35)
+    arm_l = lx * d.uniform(0.94, 0.99)
+    arm_x, fill = -lx / 2 + arm_l / 2, 0.12 if material == "metal" else 0.45
+    arm = (arm_l / 2, w * 0.42, arm_t / 2)
+    slab(d, "arm", arm, arm_z, material, body, xy=(arm_x, 0), solid_fraction=fill)
+    cover = (arm_l / 2, w * 0.42, arm_t * 0.4)
+    d.ellipsoid("cover", cover, (arm_x, 0, arm_z + arm_t), material, body, visual_only=True)
+    nose = (0.007, w * 0.36, 0.003)
+    slab(d, "nose", nose, arm_z - 0.006, "metal", "silver", xy=(arm_x + arm_l / 2 - 0.007, 0))
+    return Traits((body, base), material, "elongated")
+
+
+@generator("ballpoint_pen", size=(0.12, 0.16), synonyms=("pen", "ballpoint pen", "ballpoint"))
+def ballpoint_pen(d: Design) -> Traits:
+    ink = d.choice(["blue", "black", "red", "green"])
+    length = d.uniform(0.135, 0.15)
+    if d.rng.random() < 0.5:  # stick pen: hexagonal clear barrel, cap and end plug in ink colour
+        a = d.uniform(0.0036, 0.0044)
+        body = d.choice(["transparent", "transparent", "white", "yellow"])
+        cap = d.uniform(0.03, 0.035)
+        barrel = length - cap - 0.004
+        x0 = -length / 2
+        d.rod("plug", a * 0.8, 0.004, (x0 + 0.002, 0, a), "plastic", ink)
+        hex_rod(d, "barrel", a, barrel, (x0 + 0.004 + barrel / 2, 0, a), "plastic", body)
+        refill = (x0 + 0.004 + barrel / 2, 0, a)
+        d.rod("refill", a * 0.3, barrel, refill, "plastic", ink, visual_only=True)
+        hex_rod(d, "cap", a + 0.0007, cap, (length / 2 - cap / 2, 0, a + 0.0007), "plastic", ink)
+        clip = (length / 2 - cap / 2 - 0.002, 0, 2 * a + 0.0026)
+        d.box("clip", (cap * 0.4, 0.0016, 0.0012), clip, "plastic", ink)
+        return Traits((body, ink), "plastic", "elongated")
+    body = d.choice(["black", "silver", "blue", "white", "red", "purple"])
+    material = "metal" if body == "silver" else "plastic"
+    r = d.uniform(0.0042, 0.0055)
+    grip, cone, button = length * 0.25, 0.012, 0.008
+    barrel = length - grip - cone - button
+    x = -length / 2
+    d.rod("button", r * 0.55, button, (x + button / 2, 0, r), "plastic", ink)
+    x += button
+    d.rod("barrel", r, barrel, (x + barrel / 2, 0, r), material, body, solid_fraction=0.6)
+    d.box("clip", (0.022, 0.0016, 0.0011), (x + 0.024, 0, 2 * r + 0.0011), "metal", "silver")
+    x += barrel
+    d.rod("grip", r + 0.0005, grip, (x + grip / 2, 0, r), "rubber", d.choice(["black", ink]))
+    x += grip
+    d.rod("cone", r * 0.55, cone, (x + cone / 2, 0, r), "metal", "silver")
+    return Traits((body,), material, "elongated")
+
+
+@generator(
+    "pen_holder",
+    size=(0.085, 0.13),
+    synonyms=("pen holder", "pencil holder", "pen cup", "pencil cup"),
+    container=True,
+)
+def pen_holder(d: Design) -> Traits:
+    material = d.choice(["plastic", "metal", "wood", "ceramic"])
+    color = d.choice(
+        {
+            "plastic": BRIGHT + ["white", "transparent"],
+            "metal": ["silver", "black", "golden", "gray"],
+            "wood": ["brown", "beige"],
+            "ceramic": ["white", "blue", "black", "green", "beige"],
+        }[material]
+    )
+    t = {"metal": 0.0015, "wood": 0.006, "plastic": 0.003, "ceramic": 0.005}[material]
+    h, floor = d.uniform(0.085, 0.115), 0.006
+    if d.rng.random() < 0.5:
+        r = d.uniform(0.03, 0.04)
+        d.upright("floor", r + t, floor, 0.0, material, color)
+        d.wall("wall", r, t, h - floor, floor, material, color, segments=18)
+        d.interior((r * 0.68, r * 0.68), floor_z=floor, rim_z=h)
+        return Traits((color,), material, "cylinder")
+    hx, hy = d.uniform(0.032, 0.042), d.uniform(0.032, 0.042)
+    open_box(d, "cup", hx, hy, h, t, floor, material, color)
+    d.interior(((hx - t) * 0.85, (hy - t) * 0.85), floor_z=floor, rim_z=h)
+    return Traits((color,), material, "cuboid")
+
+
+@generator("glue_stick", size=(0.07, 0.12), synonyms=("glue stick", "stick of glue"))
+def glue_stick(d: Design) -> Traits:
+    body = d.choice(["white", "yellow", "blue", "purple", "green", "red"])
+    cap = d.choice(["white", "red", "blue", "orange", "purple", "black"])
+    r, h = d.uniform(0.009, 0.014), d.uniform(0.075, 0.11)
+    cap_h, twist = h * d.uniform(0.25, 0.32), 0.01
+    d.upright("twist", r * 0.93, twist, 0.0, "plastic", cap)
+    body_h = h - twist - cap_h
+    d.upright("body", r, body_h, twist, "plastic", body, solid_fraction=0.6)
+    band = (r + 0.0005, body_h * 0.7, twist + body_h * 0.15)
+    label = d.choice(["white", "yellow", "red", "black"])
+    d.upright("label", *band, "paper", label, visual_only=True)
+    d.upright("cap", r + 0.0008, cap_h, h - cap_h, "plastic", cap, solid_fraction=0.4)
+    return Traits((body, cap), "plastic", "cylinder")
+
+
+@generator("correction_tape", size=(0.06, 0.1), synonyms=("correction tape", "white-out tape"))
+def correction_tape(d: Design) -> Traits:
+    color = d.choice(["blue", "pink", "purple", "green", "white", "orange", "yellow"])
+    R, hz = d.uniform(0.016, 0.021), d.uniform(0.014, 0.019)
+    front = d.uniform(0.03, 0.045)
+    d.upright("reel_case", R, hz, 0.0, "plastic", color, solid_fraction=0.5)
+    slab(
+        d,
+        "body",
+        (front / 2, R * 0.72, hz / 2),
+        0.0,
+        "plastic",
+        color,
+        xy=(front / 2, 0),
+        solid_fraction=0.5,
+    )
+    nose = 0.012
+    slab(
+        d, "nose", (nose / 2, 0.005, hz * 0.3), hz * 0.2, "plastic", color, xy=(front + nose / 2, 0)
+    )
+    slab(
+        d,
+        "tip",
+        (0.0015, 0.0065, hz * 0.2),
+        hz * 0.3,
+        "plastic",
+        "white",
+        xy=(front + nose + 0.0015, 0),
+    )
+    d.upright("window", R * 0.82, 0.0005, hz, "plastic", "transparent", visual_only=True)
+    d.upright("spool", R * 0.7, 0.0006, hz + 0.0005, "paper", "white", visual_only=True)
+    hub = d.choice(["black", "gray", "yellow"])
+    d.upright("hub", R * 0.3, 0.0006, hz + 0.0011, "plastic", hub, visual_only=True)
+    for k in range(3):
+        rib = (front * 0.55 + k * 0.004, 0, hz + 0.0004)
+        d.box(f"rib_{k}", (0.001, R * 0.55, 0.0004), rib, "rubber", "gray", visual_only=True)
+    return Traits((color, "white"), "plastic", "flat")
+
+
+@generator("sharpener", size=(0.02, 0.065), synonyms=("pencil sharpener", "sharpener"))
+def sharpener(d: Design) -> Traits:
+    blade = d.choice(["silver", "gray"])
+    if d.rng.random() < 0.5:  # a small aluminium block
+        color = d.choice(["silver", "red", "blue", "green", "golden"])
+        lx, ly, lz = d.uniform(0.022, 0.03), d.uniform(0.014, 0.018), d.uniform(0.01, 0.013)
+        slab(d, "block", (lx / 2, ly / 2, lz / 2), 0.0, "aluminium", color)
+        colors, material, z_hole, top = (color,), "aluminium", lz / 2, lz
+    else:  # a plastic head over a clear shavings canister
+        color = d.choice(BRIGHT)
+        lx, ly = d.uniform(0.035, 0.06), d.uniform(0.022, 0.032)
+        can, head = d.uniform(0.012, 0.02), d.uniform(0.014, 0.018)
+        slab(
+            d,
+            "canister",
+            (lx / 2, ly / 2, can / 2),
+            0.0,
+            "plastic",
+            "transparent",
+            solid_fraction=0.25,
+        )
+        slab(d, "head", (lx / 2, ly / 2, head / 2), can, "plastic", color, solid_fraction=0.6)
+        colors, material, z_hole, top = (
+            (color, "transparent"),
+            "plastic",
+            can + head / 2,
+            can + head,
+        )
+    d.rod("hole", 0.0045, 0.001, (lx / 2 + 0.0005, 0, z_hole), "plastic", "black", visual_only=True)
+    d.box(
+        "blade",
+        (lx * 0.3, ly * 0.35, 0.0004),
+        (0, 0, top + 0.0004),
+        "metal",
+        blade,
+        visual_only=True,
+    )
+    d.upright("screw", 0.0018, 0.0006, top + 0.0008, "metal", "black", visual_only=True)
+    return Traits(colors, material, "cuboid")
+
+
+@generator("notebook", size=(0.14, 0.27), synonyms=("notebook", "exercise book"), graspable=False)
+def notebook(d: Design) -> Traits:
+    cover = d.choice(BRIGHT + ["brown", "beige", "gray", "white"])
+    lx, ly = d.choice([(0.21, 0.148), (0.148, 0.105), (0.25, 0.176), (0.18, 0.13)])
+    scale = d.uniform(0.97, 1.03)
+    lx, ly, pages, skin = lx * scale, ly * scale, d.uniform(0.006, 0.016), 0.0012
+    slab(d, "back_cover", (lx / 2, ly / 2, skin / 2), 0.0, "paper", cover)
+    slab(d, "pages", (lx / 2 - 0.003, ly / 2 - 0.003, pages / 2), skin, "paper", "white")
+    top = 2 * skin + pages
+    slab(d, "front_cover", (lx / 2, ly / 2, skin / 2), skin + pages, "paper", cover)
+    edge = ly / 2 - 0.006
+    if d.rng.random() < 0.5:
+        n, rc = int(lx / 0.009), top / 2 + 0.003
+        for k in range(n):
+            coil = (-lx / 2 + (k + 0.5) * lx / n, edge + 0.004, rc)
+            d.rod(f"coil_{k}", rc, 0.0012, coil, "metal", "silver", visual_only=True)
+    else:
+        spine = (0, edge, top + 0.0003)
+        tape = d.choice(["black", "brown", "gray", "red"])
+        d.box("spine", (lx / 2, 0.008, 0.0003), spine, "fabric", tape, visual_only=True)
+    if d.rng.random() < 0.5:
+        label = (lx * 0.1, -ly * 0.1, top + 0.0002)
+        d.box("label", (ly * 0.22, ly * 0.13, 0.0002), label, "paper", "white", visual_only=True)
+    else:
+        band = (lx / 2 - 0.022, 0, top + 0.0004)
+        color = d.choice(["black", "red", "gray"])
+        d.box("band", (0.003, ly / 2, 0.0004), band, "fabric", color, visual_only=True)
+    return Traits((cover,), "paper", "flat")
+
+
+@generator("scissors", size=(0.13, 0.22), synonyms=("scissors", "pair of scissors"))
+def scissors(d: Design) -> Traits:
+    handle = d.choice(BRIGHT + ["black", "gray"])
+    length = d.uniform(0.14, 0.21)
+    blade, bw, opening = length * 0.47, d.uniform(0.009, 0.013), d.uniform(0.02, 0.07)
+    ring, band, thick = d.uniform(0.012, 0.015), d.uniform(0.0045, 0.006), 0.008
+    outer = ring + band
+    shank = length - blade - 1.5 * outer
+    for k, sign in enumerate((1, -1)):
+        yaw = sign * opening
+        c, s = math.cos(yaw), math.sin(yaw)
+        z = 0.001 + 0.002 * k
+        for name, start, stop, width in (
+            ("blade", -shank, blade * 0.7, bw / 2),
+            ("tip", blade * 0.7, blade, bw / 3.2),
+        ):
+            mid = (start + stop) / 2
+            half = ((stop - start) / 2, width, 0.001)
+            d.box(f"{name}_{k}", half, (c * mid, s * mid, z), "metal", "silver", yaw=yaw)
+        end = (-c * shank, -s * shank)
+        loop = (end[0] - 0.5 * outer, -sign * 0.8 * outer)
+        dx, dy = loop[0] - end[0], loop[1] - end[1]
+        dist = math.hypot(dx, dy)
+        f = (dist - ring) / (2 * dist)
+        mid = (end[0] + dx * f, end[1] + dy * f)
+        slab(
+            d,
+            f"bridge_{k}",
+            (dist * f, 0.0035, thick * 0.4),
+            0.0,
+            "plastic",
+            handle,
+            xy=mid,
+            yaw=math.atan2(dy, dx),
+        )
+        flat_ring(
+            d,
+            f"loop_{k}",
+            ring + band / 2,
+            band,
+            thick,
+            0.0,
+            "plastic",
+            handle,
+            center=loop,
+            segments=10,
+        )
+    d.upright("pivot", 0.0035, 0.0008, 0.005, "metal", "gray", visual_only=True)
+    return Traits((handle, "silver"), "metal", "elongated")
+
+
+@generator(
+    "scotch_tape",
+    size=(0.045, 0.16),
+    synonyms=("scotch tape", "sticky tape", "adhesive tape", "tape roll"),
+)
+def scotch_tape(d: Design) -> Traits:
+    tape = d.choice(["transparent", "transparent", "beige", "pink", "blue", "yellow", "green"])
+    core = d.choice(["white", "beige", "red", "blue"])
+    width = d.uniform(0.012, 0.02)
+    rc, wound = d.uniform(0.0125, 0.019), d.uniform(0.005, 0.012)
+    if d.rng.random() < 0.65:  # a loose roll lying flat
+        d.wall("core", rc, 0.0015, width, 0.0, "paper", core, segments=16)
+        d.wall("tape", rc + 0.0015, wound, width, 0.0, "plastic", tape, segments=16)
+        return Traits((tape, core), "plastic", "ring")
+    body = d.choice(["black", "gray", "blue", "red", "pink"])
+    R, lx, base_t = rc + 0.0015 + wound, d.uniform(0.1, 0.14), d.uniform(0.012, 0.018)
+    ly = width + 0.012
+    slab(d, "base", (lx / 2, ly / 2, base_t / 2), 0.0, "plastic", body)
+    roll_x, roll_z = -lx / 2 + R + 0.006, base_t + R + 0.001
+    for sign in (-1, 1):
+        cheek = (R * 0.8, 0.003, R / 2)
+        slab(
+            d, f"cheek_{sign}", cheek, base_t, "plastic", body, xy=(roll_x, sign * (ly / 2 - 0.003))
+        )
+    d.rod("roll", R, width, (roll_x, 0, roll_z), "plastic", tape, axis="y")
+    d.rod("core", rc, width + 0.001, (roll_x, 0, roll_z), "paper", core, axis="y", visual_only=True)
+    nose_x, nose_h = lx / 2 - 0.015, R * 1.2
+    slab(d, "nose", (0.015, ly / 2, nose_h / 2), base_t, "plastic", body, xy=(nose_x, 0))
+    cutter = (lx / 2 - 0.002, 0, base_t + nose_h + 0.002)
+    d.box("cutter", (0.002, width / 2 + 0.002, 0.002), cutter, "metal", "silver")
+    run = cutter[0] - roll_x
+    strip = (roll_x + run / 2, 0, base_t + nose_h + 0.0003 + (roll_z + R - base_t - nose_h) / 2)
+    tilt = math.atan2(roll_z + R - base_t - nose_h, run)
+    d.add(
+        "strip",
+        "box",
+        (run / 2, width / 2, 0.0003),
+        strip,
+        "plastic",
+        tape,
+        quat=axis_angle_quat((0, 1, 0), tilt),
+        visual_only=True,
+    )
+    return Traits((body, tape), "plastic", "elongated")
+
+
+@generator("magnifier", size=(0.13, 0.26), synonyms=("magnifying glass", "magnifier", "hand lens"))
+def magnifier(d: Design) -> Traits:
+    rim = d.choice(["black", "silver", "golden", "gray"])
+    handle = d.choice(["black", "brown", "red", "blue", "silver"])
+    handle_mat = {"brown": "wood", "silver": "metal"}.get(handle, "plastic")
+    rl, rh = d.uniform(0.024, 0.036), d.uniform(0.0075, 0.0105)
+    hr, t = 2 * rh * d.uniform(0.7, 0.95), 0.003
+    rim_mat = "metal" if rim in ("silver", "golden") else "plastic"
+    d.wall("rim", rl, t, hr, 0.0, rim_mat, rim, segments=20)
+    d.upright("lens", rl + 0.0005, 0.004, hr / 2 - 0.002, "glass", "transparent")
+    neck = 0.012
+    slab(d, "neck", (neck / 2, 0.005, hr / 2), 0.0, rim_mat, rim, xy=(rl + t + neck / 2, 0))
+    length = d.uniform(0.08, 0.12)
+    x0 = rl + t + neck
+    d.rod("ferrule", rh + 0.0008, 0.008, (x0 + 0.004, 0, rh), "metal", rim)
+    d.rod(
+        "handle",
+        rh,
+        length,
+        (x0 + 0.008 + length / 2, 0, rh),
+        handle_mat,
+        handle,
+        capsule=True,
+        solid_fraction=0.6 if handle_mat == "metal" else 1.0,
+    )
+    return Traits((handle, rim), "glass", "irregular")
+
+
+@generator(
+    "cutter_knife", size=(0.13, 0.2), synonyms=("box cutter", "utility knife", "cutter knife")
+)
+def cutter_knife(d: Design) -> Traits:
+    color = d.choice(["yellow", "orange", "blue", "black", "red", "green"])
+    grip = "gray" if color == "black" else "black"
+    lx, w, t = d.uniform(0.125, 0.16), d.uniform(0.017, 0.025), d.uniform(0.011, 0.015)
+    slab(d, "body", (lx / 2, w / 2, t / 2), 0.0, "plastic", color, solid_fraction=0.7)
+    grip_half = (lx * 0.2, w / 2 + 0.0004, t / 2 + 0.0004)
+    d.box("grip", grip_half, (-lx * 0.22, 0, t / 2), "rubber", grip, visual_only=True)
+    d.box(
+        "track",
+        (lx * 0.2, w * 0.12, 0.0004),
+        (lx * 0.22, 0, t + 0.0004),
+        "metal",
+        "silver",
+        visual_only=True,
+    )
+    slab(
+        d, "slider", (0.007, w * 0.3, 0.0015), t, "plastic", grip, xy=(lx * d.uniform(0.1, 0.3), 0)
+    )
+    ext = d.uniform(0.01, 0.025)
+    d.box("blade", (ext / 2, w * 0.3, 0.0004), (lx / 2 + ext / 2, 0, t / 2), "metal", "silver")
+    tip = (lx / 2 + ext, w * 0.05, t / 2)
+    d.box("blade_tip", (w * 0.35, 0.002, 0.0004), tip, "metal", "silver", yaw=1.0, visual_only=True)
+    return Traits((color, grip), "plastic", "elongated")
+
+
+@generator("stamp", size=(0.05, 0.1), synonyms=("rubber stamp", "ink stamp"))
+def stamp(d: Design) -> Traits:
+    ink = d.choice(["red", "black", "blue", "purple"])
+    if d.rng.random() < 0.5:  # a wooden block with a knob
+        wood = d.choice(["brown", "beige"])
+        knob = d.choice([wood, "black", "red"])
+        lx, ly = d.uniform(0.03, 0.05), d.uniform(0.025, 0.04)
+        block, neck = d.uniform(0.012, 0.018), d.uniform(0.025, 0.035)
+        slab(d, "pad", (lx / 2 - 0.002, ly / 2 - 0.002, 0.002), 0.0, "rubber", ink)
+        slab(d, "block", (lx / 2, ly / 2, block / 2), 0.004, "wood", wood)
+        d.upright("neck", 0.007, neck, 0.004 + block, "wood", knob)
+        kr = d.uniform(0.012, 0.016)
+        d.ellipsoid(
+            "knob", (kr, kr, kr * 0.8), (0, 0, 0.004 + block + neck + kr * 0.5), "wood", knob
+        )
+        return Traits((wood, knob), "wood", "T-shape")
+    color = d.choice(["black", "blue", "red", "gray"])
+    lx, ly, h = d.uniform(0.04, 0.06), d.uniform(0.025, 0.035), d.uniform(0.045, 0.06)
+    slab(d, "pad", (lx / 2, ly / 2, 0.004), 0.0, "plastic", "black")
+    slab(
+        d,
+        "body",
+        (lx / 2 - 0.002, ly / 2 - 0.002, h * 0.3),
+        0.008,
+        "plastic",
+        color,
+        solid_fraction=0.5,
+    )
+    slab(
+        d,
+        "handle",
+        (lx / 2 + 0.003, ly / 2, h * 0.12),
+        0.008 + h * 0.6,
+        "plastic",
+        color,
+        solid_fraction=0.5,
+    )
+    window = (0, -ly / 2 + 0.0018, 0.008 + h * 0.3)
+    d.box("window", (lx * 0.3, 0.0003, h * 0.12), window, "plastic", "white", visual_only=True)
+    d.box("ink_dot", (lx * 0.05, 0.0003, h * 0.04), window, "plastic", ink, visual_only=True)
+    return Traits((color,), "plastic", "cuboid")
+
+
+@generator("staples_box", size=(0.05, 0.085), synonyms=("box of staples", "staples box"))
+def staples_box(d: Design) -> Traits:
+    color = d.choice(["red", "blue", "yellow", "green", "black", "orange"])
+    lx, ly, h = d.uniform(0.05, 0.08), d.uniform(0.02, 0.035), d.uniform(0.012, 0.022)
+    clear = d.rng.random() < 0.4
+    body = "transparent" if clear else color
+    slab(
+        d,
+        "box",
+        (lx / 2, ly / 2, h * 0.35),
+        0.0,
+        "plastic" if clear else "paper",
+        body,
+        solid_fraction=0.6,
+    )
+    slab(
+        d,
+        "lid",
+        (lx / 2 + 0.0008, ly / 2 + 0.0008, h * 0.15),
+        h * 0.7,
+        "paper",
+        color,
+        solid_fraction=0.6,
+    )
+    label = "white" if color != "white" else "black"
+    d.box(
+        "label",
+        (lx * 0.38, ly * 0.36, 0.0002),
+        (0, 0, h + 0.0002),
+        "paper",
+        label,
+        visual_only=True,
+    )
+    rows = int(ly / 0.007)
+    for k in range(rows):
+        y = -ly / 2 + (k + 0.5) * ly / rows
+        z = h * 0.35 if clear else h + 0.0005
+        strip = (lx * 0.4, min(0.0018, ly / rows * 0.3), 0.0003 if not clear else h * 0.3)
+        d.box(f"staples_{k}", strip, (0, y, z), "metal", "silver", visual_only=True)
+    return Traits((color, "transparent") if clear else (color, label), "paper", "cuboid")
+
+
+@generator(
+    "sticky_notes", size=(0.05, 0.1), synonyms=("sticky notes", "post-it notes", "sticky pad")
+)
+def sticky_notes(d: Design) -> Traits:
+    notes = ["yellow", "yellow", "pink", "blue", "green", "orange"]
+    first = d.choice(notes)
+    second = d.choice([c for c in notes if c != first]) if d.rng.random() < 0.35 else first
+    side = d.uniform(0.05, 0.068)
+    lx, thick = side * d.choice([1.0, 1.0, 1.3]), d.uniform(0.008, 0.018)
+    slab(d, "pad", (lx / 2, side / 2, thick / 2), 0.0, "paper", first)
+    layers = d.choice([2, 3, 4])
+    for k in range(1, layers, 2):  # every other layer of a two-colour pad
+        band = (lx / 2 + 0.0002, side / 2 + 0.0002, thick / layers / 2)
+        slab(d, f"layer_{k}", band, k * thick / layers, "paper", second, visual_only=True)
+    top = (lx / 2 - 0.004, side / 2 - 0.004, 0.0002)
+    d.box(
+        "top_sheet",
+        top,
+        (0, 0, thick + 0.0002),
+        "paper",
+        second if layers % 2 == 0 else first,
+        yaw=d.uniform(0.04, 0.1),
+        visual_only=True,
+    )
+    return Traits(tuple(dict.fromkeys((first, second))), "paper", "cuboid")

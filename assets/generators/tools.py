@@ -1,3 +1,241 @@
-"""tools generators."""
+"""Hand tools for repairs."""
 
 from __future__ import annotations
+
+import math
+
+from ..design import Design, Traits
+from ..parts import axis_angle_quat, quat_mul
+from .bathroom import Point, strut
+from .registry import generator
+
+GRIPS = ["red", "blue", "yellow", "black", "orange", "green"]
+
+
+def _hex_rod(
+    d: Design, name: str, apothem: float, length: float, center: Point, yaw: float, color: str
+) -> None:
+    """A steel rod of hexagonal section lying on a flat: three overlapping boxes (half mass)."""
+    for k in range(3):
+        quat = quat_mul(
+            axis_angle_quat((0, 0, 1), yaw), axis_angle_quat((1, 0, 0), k * math.pi / 3)
+        )
+        half = (length / 2, apothem / math.sqrt(3), apothem)
+        d.add(f"{name}_{k}", "box", half, center, "metal", color, quat=quat, solid_fraction=0.5)
+
+
+@generator("hex_key", size=(0.08, 0.16), synonyms=("hex key", "allen key", "allen wrench"))
+def hex_key(d: Design) -> Traits:
+    color = d.choice(["black", "black", "silver", "golden"])
+    a = d.uniform(0.004, 0.005)
+    long_arm, short_arm = d.uniform(0.085, 0.14), a * d.uniform(6, 8)
+    vertex = 2 * a / math.sqrt(3)
+    _hex_rod(d, "long_arm", a, long_arm, (0, 0, a), 0.0, color)
+    _hex_rod(
+        d,
+        "short_arm",
+        a,
+        short_arm,
+        (long_arm / 2 - vertex, short_arm / 2 - vertex, a),
+        math.pi / 2,
+        color,
+    )
+    if d.choice([True, False]):
+        d.sphere("ball_end", a * 0.98, (-long_arm / 2 - a * 0.5, 0, a), "metal", color)
+    return Traits((color,), "metal", "L-shape")
+
+
+@generator("measuring_tape", size=(0.05, 0.1), synonyms=("measuring tape", "tape measure"))
+def measuring_tape(d: Design) -> Traits:
+    color = d.choice(["yellow", "yellow", "black", "red", "silver", "orange", "blue"])
+    trim = d.choice(["black", "gray"]) if color != "black" else d.choice(["yellow", "gray"])
+    h = d.uniform(0.05, 0.072)
+    length, w, r = h * d.uniform(1.05, 1.2), d.uniform(0.028, 0.04), h / 2
+    back = -length / 2
+    d.rod("spool_case", r, w, (back + r, 0, r), "plastic", color, axis="y")
+    d.box(
+        "front_case",
+        ((length - r) / 2, w / 2, r),
+        ((back + r + length / 2) / 2, 0, r),
+        "plastic",
+        color,
+    )
+    for k, s in enumerate((-1, 1)):
+        d.rod(
+            f"grip_{k}",
+            r * 0.75,
+            0.001,
+            (back + r, s * (w / 2 + 0.0005), r),
+            "rubber",
+            trim,
+            axis="y",
+            visual_only=True,
+        )
+    d.box("lock", (0.008, w * 0.22, 0.003), (length / 2 - 0.015, 0, h + 0.003), "plastic", trim)
+    d.box("clip", (length * 0.3, 0.001, h * 0.3), (0, -w / 2 - 0.0015, h * 0.55), "metal", "silver")
+    d.box("blade", (0.006, w * 0.32, 0.0006), (length / 2 + 0.006, 0, 0.004), "metal", "yellow")
+    d.box("hook", (0.0007, w * 0.34, 0.0045), (length / 2 + 0.0127, 0, 0.0045), "metal", "silver")
+    return Traits((color, trim), "plastic", "cube")
+
+
+@generator(
+    "pliers",
+    size=(0.13, 0.22),
+    synonyms=("pliers", "pair of pliers", "needle-nose pliers"),
+)
+def pliers(d: Design) -> Traits:
+    grip = d.choice(GRIPS)
+    steel = d.choice(["silver", "silver", "gray", "black"])
+    needle = d.choice([True, False])
+    length, t = d.uniform(0.14, 0.2), d.uniform(0.009, 0.011)
+    jaw = length * d.uniform(0.34, 0.4) if needle else length * d.uniform(0.22, 0.27)
+    handle, spread = length - jaw, d.uniform(0.018, 0.026)
+    jaw_w = 0.0025 if needle else 0.0045
+    d.box("joint", (0.011, 0.01, t / 2), (0, 0, t / 2), "metal", steel)
+    d.upright("rivet", 0.0045, t + 0.0015, 0.0, "metal", "silver")
+    r = t / 2 + 0.0015
+    for k, s in enumerate((-1, 1)):
+        strut(
+            d,
+            f"jaw_{k}",
+            (0.008, s * jaw_w, t / 2),
+            (jaw, s * jaw_w * 0.4, t / 2),
+            (jaw_w, t / 2),
+            "metal",
+            steel,
+        )
+        strut(
+            d,
+            f"arm_{k}",
+            (-0.008, s * 0.006, t / 2),
+            (-handle, s * spread, t / 2),
+            (0.0035, t * 0.4),
+            "metal",
+            steel,
+        )
+        f = (handle * 0.3 - 0.008) / (handle - 0.008)
+        y0 = 0.006 + (spread - 0.006) * f
+        strut(
+            d,
+            f"grip_{k}",
+            (-handle * 0.3, s * y0, r),
+            (-handle, s * spread, r),
+            (r,),
+            "plastic",
+            grip,
+            shape="capsule",
+        )
+    return Traits((grip, steel), "metal", "elongated")
+
+
+@generator("mini_hammer", size=(0.14, 0.26), synonyms=("hammer", "mini hammer", "small hammer"))
+def mini_hammer(d: Design) -> Traits:
+    steel = d.choice(["silver", "silver", "gray", "black"])
+    handle_color = d.choice(["brown", "beige", "black", "red", "yellow", "orange", "blue"])
+    handle_mat = "wood" if handle_color in ("brown", "beige") else "rubber"
+    hh, hx = d.uniform(0.008, 0.011), d.uniform(0.008, 0.011)
+    head, handle = d.uniform(0.055, 0.072), d.uniform(0.14, 0.2)
+    body = head * 0.22
+    d.box("head", (hx, body, hh), (0, 0, hh), "metal", steel)
+    d.rod("face", hh, head * 0.5 - body, (0, (head * 0.5 + body) / 2, hh), "metal", steel, axis="y")
+    if d.choice([True, False]):
+        for k, s in enumerate((-1, 1)):
+            z = hh + s * hh * 0.45
+            strut(
+                d,
+                f"claw_{k}",
+                (0, -body + 0.002, z),
+                (-0.016, -head * 0.5 + 0.004, z),
+                (0.0045, hh * 0.3),
+                "metal",
+                steel,
+            )
+    else:
+        ball = head / 2 - hh * 0.95
+        d.rod(
+            "peen_neck",
+            hh * 0.6,
+            ball - body,
+            (0, -(ball + body) / 2, hh),
+            "metal",
+            steel,
+            axis="y",
+        )
+        d.sphere("peen", hh * 0.95, (0, -ball, hh), "metal", steel)
+    d.rod("shaft", hh * 0.6, handle * 0.6, (-hx - handle * 0.3, 0, hh), handle_mat, handle_color)
+    d.rod(
+        "grip",
+        hh,
+        handle * 0.45,
+        (-hx - handle * 0.775, 0, hh),
+        handle_mat,
+        handle_color,
+        capsule=True,
+    )
+    return Traits((steel, handle_color), "metal", "T-shape")
+
+
+@generator("glue_gun", size=(0.15, 0.28), synonyms=("glue gun", "hot glue gun"))
+def glue_gun(d: Design) -> Traits:
+    color = d.choice(["blue", "black", "gray", "green", "pink", "orange", "yellow"])
+    trigger = d.choice(["black", "gray", color])
+    body, bh, w = d.uniform(0.11, 0.15), d.uniform(0.034, 0.044), d.uniform(0.028, 0.034)
+    grip_h, rake = d.uniform(0.065, 0.085), d.uniform(0.2, 0.35)
+    zb = grip_h + 0.012
+    d.box(
+        "barrel",
+        (body / 2, w / 2, bh / 2),
+        (0, 0, zb + bh / 2),
+        "plastic",
+        color,
+        solid_fraction=0.4,
+    )
+    zc = zb + bh * 0.45
+    d.rod("nose", bh * 0.3, 0.02, (body / 2 + 0.01, 0, zc), "plastic", color)
+    d.rod("nozzle", 0.005, 0.012, (body / 2 + 0.026, 0, zc), "metal", "silver")
+    d.rod("tip", 0.0022, 0.008, (body / 2 + 0.036, 0, zc), "metal", "silver")
+    stick = d.uniform(0.02, 0.07)
+    d.rod(
+        "glue_stick",
+        0.0055,
+        stick,
+        (-body / 2 - stick / 2, 0, zc),
+        "plastic",
+        d.choice(["transparent", "white"]),
+    )
+    x_top = -body / 2 + 0.03
+    x_butt = x_top - grip_h * math.tan(rake)
+    strut(
+        d,
+        "grip",
+        (x_top, 0, zb + 0.004),
+        (x_butt, 0, 0.012),
+        (w * 0.45, 0.013),
+        "plastic",
+        color,
+        solid_fraction=0.5,
+    )
+    d.box("butt", (0.02, w * 0.65, 0.006), (x_butt, 0, 0.006), "plastic", color)
+    strut(
+        d,
+        "trigger",
+        (x_top + 0.022, 0, zb),
+        (x_top + 0.018, 0, zb - 0.028),
+        (w * 0.22, 0.005),
+        "plastic",
+        trigger,
+    )
+    x_stand = body / 2 - 0.02
+    for k, s in enumerate((-1, 1)):
+        strut(
+            d,
+            f"stand_{k}",
+            (x_stand, s * w * 0.35, zb),
+            (x_stand + 0.018, s * w * 0.6, 0.002),
+            (0.002,),
+            "metal",
+            "silver",
+            shape="cylinder",
+        )
+    d.rod("stand_foot", 0.002, w * 1.3, (x_stand + 0.018, 0, 0.002), "metal", "silver", axis="y")
+    return Traits((color,) if trigger == color else (color, trigger), "plastic", "L-shape")

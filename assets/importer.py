@@ -1,0 +1,212 @@
+"""Import external assets (scanned or generated meshes) into a snapshot of their own.
+
+A source folder holds mesh files and ``metadata.json``::
+
+    {"assets": [{"id": "blue_mug_01", "mesh": "blue_mug_01.obj", "category": "mug",
+                 "colors": ["blue"], "material": "ceramic", "shape": "cylinder",
+                 "graspable": true, "container": true, "scale": 1.0,
+                 "interior": {"center": [0, 0, 0.01], "half": [0.03, 0.03], "height": 0.08},
+                 "synonyms": ["mug"], "domain": "...", "super_category": "..."}]}
+
+Meshes are in metres after ``scale``, z up, in their resting pose. Each mesh is decomposed
+into convex pieces with CoACD (cached by content in the user data folder, never inside the
+installed package), recentred to rest on z = 0, checked like generated assets, and stored as
+an instance record. The new snapshot lists the extended snapshot's assets plus the imported
+ones, so envs take it with ``snapshot=NAME``.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import os
+import uuid as uuidlib
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+import trimesh
+
+from .catalog import Instance, taxonomy
+from .generators import GENERATORS
+from .parts import Part, Region
+from .vocab import COLORS, MATERIAL_WORD, MATERIALS, SHAPES
+
+IMPORT_NAMESPACE = uuidlib.UUID("0b7e8a52-92d1-4d37-9a57-4c0c3a4f8e11")
+REQUIRED = ("id", "mesh", "category", "colors", "material", "shape")
+
+
+def data_home() -> Path:
+    """User data folder for imported assets, caches and user snapshots."""
+    return Path(os.environ.get("INSTRUCTMOVE_HOME", Path.home() / ".instructmove"))
+
+
+class ImportError_(ValueError):
+    """Bad metadata or mesh in an import folder."""
+
+
+@dataclass(frozen=True)
+class Piece:
+    path: Path  # OBJ centred on the piece's bounding box
+    center: tuple[float, float, float]  # where that centre sits in the object frame
+
+
+def _check_entry(entry: dict, index: int) -> None:
+    missing = [k for k in REQUIRED if k not in entry]
+    if missing:
+        raise ImportError_(f"asset #{index}: missing fields {missing}; required: {list(REQUIRED)}")
+    for color in entry["colors"]:
+        if color not in COLORS:
+            raise ImportError_(
+                f"asset {entry['id']!r}: unknown colour {color!r}; allowed: {sorted(COLORS)}"
+            )
+    if not 1 <= len(entry["colors"]) <= 2:
+        raise ImportError_(f"asset {entry['id']!r}: give 1 or 2 colours")
+    if entry["material"] not in MATERIALS:
+        raise ImportError_(
+            f"asset {entry['id']!r}: unknown material {entry['material']!r}; "
+            f"allowed: {sorted(MATERIALS)}"
+        )
+    if entry["shape"] not in SHAPES:
+        raise ImportError_(
+            f"asset {entry['id']!r}: unknown shape {entry['shape']!r}; allowed: {list(SHAPES)}"
+        )
+    if entry["category"] not in taxonomy() and not {"domain", "super_category"} <= set(entry):
+        raise ImportError_(
+            f"asset {entry['id']!r}: category {entry['category']!r} is not in "
+            "the taxonomy; give its domain and super_category"
+        )
+
+
+def _write_obj(path: Path, mesh: trimesh.Trimesh) -> None:
+    tmp = path.with_suffix(".tmp")
+    mesh.export(tmp, file_type="obj")
+    os.replace(tmp, path)
+
+
+def decompose(mesh: trimesh.Trimesh, digest: str, threshold: float) -> tuple[list[Piece], Path]:
+    """CoACD convex pieces and the visual mesh, centred, cached by content."""
+    folder = data_home() / "coacd" / f"{digest}-{threshold}"
+    index = folder / "pieces.json"
+    if not index.is_file():
+        import coacd
+
+        folder.mkdir(parents=True, exist_ok=True)
+        coacd.set_log_level("error")
+        hulls = coacd.run_coacd(
+            coacd.Mesh(mesh.vertices, mesh.faces),
+            threshold=threshold,
+            max_convex_hull=32,
+            preprocess_resolution=30,
+            resolution=1000,
+            mcts_iterations=60,
+            mcts_nodes=12,
+        )
+        centres = []
+        for k, (verts, faces) in enumerate(hulls):
+            piece = trimesh.Trimesh(verts, faces).convex_hull
+            centre = piece.bounds.mean(axis=0)
+            piece.apply_translation(-centre)
+            _write_obj(folder / f"piece_{k:03d}.obj", piece)
+            centres.append([float(v) for v in centre])
+        visual = mesh.copy()
+        visual.apply_translation(-visual.bounds.mean(axis=0))
+        _write_obj(folder / "visual.obj", visual)
+        tmp = index.with_suffix(".tmp")
+        tmp.write_text(json.dumps(centres))
+        os.replace(tmp, index)  # written last: marks a complete cache entry
+    centres = json.loads(index.read_text())
+    pieces = [Piece(folder / f"piece_{k:03d}.obj", tuple(c)) for k, c in enumerate(centres)]
+    return pieces, folder / "visual.obj"
+
+
+def import_asset(entry: dict, source: Path, threshold: float = 0.05) -> Instance:
+    """One metadata entry of ``source`` as an instance (mesh decomposed, recentred)."""
+    mesh_path = source / entry["mesh"]
+    if not mesh_path.is_file():
+        raise ImportError_(f"asset {entry['id']!r}: mesh file {mesh_path} not found")
+    try:
+        mesh = trimesh.load(mesh_path, force="mesh")
+    except Exception as exc:
+        raise ImportError_(f"asset {entry['id']!r}: cannot read {mesh_path}: {exc}") from exc
+    if not isinstance(mesh, trimesh.Trimesh) or len(mesh.faces) == 0:
+        raise ImportError_(f"asset {entry['id']!r}: {mesh_path} holds no triangle mesh")
+    scale = float(entry.get("scale", 1.0))
+    mesh.apply_scale(scale)
+    lo, hi = mesh.bounds
+    offset = np.array([-(lo[0] + hi[0]) / 2, -(lo[1] + hi[1]) / 2, -lo[2]])
+    mesh.apply_translation(offset)
+    digest = hashlib.sha256(mesh_path.read_bytes() + repr(scale).encode()).hexdigest()[:24]
+    pieces, visual = decompose(mesh, digest, threshold)
+    color, material = entry["colors"][0], entry["material"]
+    identity = (1.0, 0.0, 0.0, 0.0)
+    parts = []
+    for k, piece in enumerate(pieces):
+        hull = trimesh.load(piece.path, force="mesh")
+        parts.append(
+            Part(
+                f"piece_{k}",
+                "mesh",
+                tuple(float(v) for v in hull.extents / 2),
+                piece.center,
+                identity,
+                material,
+                color,
+                COLORS[color],
+                mesh=str(piece.path),
+                mesh_volume=float(hull.volume),
+            )
+        )
+    parts.append(
+        Part(
+            "visual",
+            "mesh",
+            tuple(float(v) for v in mesh.extents / 2),
+            tuple(float(v) for v in mesh.bounds.mean(axis=0)),
+            identity,
+            material,
+            color,
+            COLORS[color],
+            visual_only=True,
+            mesh=str(visual),
+        )
+    )
+    category = entry["category"]
+    known = taxonomy().get(category)
+    gen = GENERATORS.get(category)
+    nouns = entry.get("synonyms") or (gen.synonyms if gen else (category.replace("_", " "),))
+    interior = entry.get("interior")
+    return Instance(
+        uuid=str(uuidlib.uuid5(IMPORT_NAMESPACE, f"{entry['id']}/{digest}")),
+        category=category,
+        index=-1,
+        domain=entry.get("domain", known.domain if known else ""),
+        super_category=entry.get("super_category", known.super_category if known else ""),
+        parts=tuple(parts),
+        colors=tuple(entry["colors"]),
+        material=MATERIAL_WORD.get(material, material),
+        shape=entry["shape"],
+        nouns=tuple(nouns),
+        is_graspable=bool(entry.get("graspable", True)),
+        is_container=bool(entry.get("container", False)),
+        interior=None
+        if interior is None
+        else Region(
+            tuple(float(v) for v in np.asarray(interior["center"], dtype=float) + offset),
+            tuple(float(v) for v in interior["half"]),
+            float(interior["height"]),
+        ),
+    )
+
+
+def read_metadata(source: Path) -> list[dict]:
+    path = source / "metadata.json"
+    if not path.is_file():
+        raise ImportError_(f"{path} not found: an import folder needs a metadata.json")
+    try:
+        entries = json.loads(path.read_text())["assets"]
+    except (json.JSONDecodeError, KeyError, TypeError) as exc:
+        raise ImportError_(f'{path}: expected {{"assets": [...]}}: {exc}') from exc
+    for k, entry in enumerate(entries):
+        _check_entry(entry, k)
+    return entries

@@ -1,0 +1,187 @@
+"""Snapshots: immutable lists of assets (uuid + content hash) that experiments freeze.
+
+A snapshot file names every instance by (category, index) with its uuid and the hash of its
+generated content. Loading regenerates each instance and refuses a snapshot whose content no
+longer matches, so an experiment can never silently run on changed assets. Growing the
+library (new categories, more instances) writes a new snapshot; old ones keep their meaning.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import os
+import tempfile
+from dataclasses import asdict
+from functools import cache
+from importlib import resources
+from pathlib import Path
+
+from .catalog import Catalog, Instance, generate_instance
+from .generators import GENERATORS
+from .importer import data_home
+
+DEFAULT_SNAPSHOT = "default"
+INSTANCES_PER_CATEGORY = 10
+SNAPSHOT_DIR = "snapshots"
+
+
+def content_hash(inst: Instance) -> str:
+    """sha256 of everything that defines the instance: its parts and stated traits."""
+    payload = {  # mesh paths depend on where the user keeps data: their content is in the uuid
+        "parts": [{k: v for k, v in asdict(p).items() if k != "mesh"} for p in inst.parts],
+        "traits": [
+            inst.colors,
+            inst.material,
+            inst.shape,
+            inst.nouns,
+            inst.is_graspable,
+            inst.is_container,
+        ],
+        "interior": None if inst.interior is None else asdict(inst.interior),
+    }
+    text = json.dumps(payload, sort_keys=True, default=lambda v: round(v, 9))
+    return hashlib.sha256(text.encode()).hexdigest()
+
+
+def build_entries(categories: list[str], per_category: int) -> list[dict]:
+    entries = []
+    for cat in categories:
+        for index in range(per_category):
+            inst = generate_instance(cat, index)
+            entries.append(
+                {
+                    "uuid": inst.uuid,
+                    "category": cat,
+                    "index": index,
+                    "content_hash": content_hash(inst),
+                }
+            )
+    return entries
+
+
+def write_snapshot(path: Path, name: str, entries: list[dict]) -> Path:
+    """Write atomically (temporary file in the same folder, then rename)."""
+    path.parent.mkdir(parents=True, exist_ok=True)
+    text = json.dumps({"name": name, "instances": entries}, indent=1, sort_keys=True) + "\n"
+    fd, tmp = tempfile.mkstemp(dir=path.parent, suffix=".tmp")
+    with os.fdopen(fd, "w") as f:
+        f.write(text)
+    os.chmod(tmp, 0o644)
+    os.replace(tmp, path)
+    return path
+
+
+def package_snapshot_dir() -> Path:
+    return Path(str(resources.files("instructmove_ms.assets").joinpath(SNAPSHOT_DIR)))
+
+
+def user_snapshot_dir() -> Path:
+    return data_home() / SNAPSHOT_DIR
+
+
+def imported_record_path(uuid: str) -> Path:
+    return data_home() / "imported" / f"{uuid}.json"
+
+
+def snapshot_path(name: str) -> Path | None:
+    """The file of snapshot ``name``: shipped with the package, else in the user folder."""
+    for folder in (package_snapshot_dir(), user_snapshot_dir()):
+        path = folder / f"{name}.json"
+        if path.is_file():
+            return path
+    return None
+
+
+def available_snapshots() -> list[str]:
+    names = {
+        p.stem for d in (package_snapshot_dir(), user_snapshot_dir()) for p in d.glob("*.json")
+    }
+    return sorted(names)
+
+
+def _load_entry(name: str, entry: dict) -> Instance:
+    if entry.get("source") == "import":
+        path = imported_record_path(entry["uuid"])
+        if not path.is_file():
+            raise ValueError(
+                f"snapshot {name!r} needs imported asset {entry['uuid']}, "
+                f"whose record {path} is missing"
+            )
+        return Instance.from_record(json.loads(path.read_text()))
+    if entry["category"] not in GENERATORS:
+        raise ValueError(
+            f"snapshot {name!r} needs category {entry['category']!r}, "
+            "which has no generator in this version"
+        )
+    return generate_instance(entry["category"], entry["index"])
+
+
+@cache
+def load_snapshot(name: str = DEFAULT_SNAPSHOT) -> Catalog:
+    """The catalog of snapshot ``name``; every instance rebuilt and hash-checked."""
+    path = snapshot_path(name)
+    if path is None:
+        raise ValueError(f"unknown snapshot {name!r}; allowed: {available_snapshots()}")
+    data = json.loads(path.read_text())
+    instances = []
+    for entry in data["instances"]:
+        inst = _load_entry(name, entry)
+        if inst.uuid != entry["uuid"] or content_hash(inst) != entry["content_hash"]:
+            raise ValueError(
+                f"snapshot {name!r} is stale: {entry['category']} #{entry['index']} "
+                f"({entry['uuid']}) changed since it was frozen; rebuild it with "
+                "`instructmove assets build` or freeze a new snapshot"
+            )
+        instances.append(inst)
+    return Catalog(name, instances)
+
+
+def entry_of(inst: Instance) -> dict:
+    entry = {
+        "uuid": inst.uuid,
+        "category": inst.category,
+        "index": inst.index,
+        "content_hash": content_hash(inst),
+    }
+    if inst.index < 0:  # imported assets have no generator index
+        entry["source"] = "import"
+    return entry
+
+
+def import_folder(
+    source: Path, name: str, extend: str | None = DEFAULT_SNAPSHOT, threshold: float = 0.05
+) -> tuple[Path, list[tuple[str, list[str]]]]:
+    """Import ``source`` (see ``importer``), check every asset, and write snapshot ``name``
+    (the assets of ``extend`` plus the imported ones that pass). Returns the snapshot path
+    and the (asset id, failures) of those left out."""
+    from tqdm import tqdm
+
+    from .importer import import_asset, read_metadata
+    from .quality import check_instances
+
+    if snapshot_path(name) is not None and name in {
+        p.stem for p in package_snapshot_dir().glob("*.json")
+    }:
+        raise ValueError(f"snapshot {name!r} ships with the package; choose another name")
+    entries = read_metadata(source)
+    base = list(load_snapshot(extend).instances) if extend else []
+    instances = [
+        import_asset(e, source, threshold) for e in tqdm(entries, desc="decomposing", unit="asset")
+    ]
+    rejected, kept = [], []
+    for entry, inst, result in zip(entries, instances, check_instances(instances), strict=True):
+        if result.ok:
+            kept.append(inst)
+        else:
+            rejected.append((entry["id"], result.failures))
+    for inst in kept:
+        record = imported_record_path(inst.uuid)
+        record.parent.mkdir(parents=True, exist_ok=True)
+        tmp = record.with_suffix(".tmp")
+        tmp.write_text(json.dumps(inst.to_record()))
+        os.replace(tmp, record)
+    snapshot = [entry_of(i) for i in base + kept]
+    path = write_snapshot(user_snapshot_dir() / f"{name}.json", name, snapshot)
+    load_snapshot.cache_clear()
+    return path, rejected
