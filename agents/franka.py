@@ -10,6 +10,8 @@ from mani_skill.agents.robots.panda.panda import Panda
 from mani_skill.sensors.camera import CameraConfig
 from mani_skill.utils import sapien_utils
 
+from instructmove_ms.layout import Workspace
+
 from .cameras import DEFAULT_HEIGHT, DEFAULT_WIDTH, Intrinsics
 from .interface import InstructMoveAgent
 
@@ -39,6 +41,8 @@ class FrankaInstructMove(InstructMoveAgent, Panda):
     """
 
     uid = "franka"
+    #: A top-down grasp stays well conditioned from 0.3 m in front of the base.
+    workspace = Workspace(x=(0.3, 0.6), y=(-0.35, 0.35))
     keyframes = dict(rest=Keyframe(qpos=FRANKA_REST_QPOS.copy(), pose=sapien.Pose()))
 
     @property

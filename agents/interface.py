@@ -5,6 +5,8 @@ from __future__ import annotations
 import numpy as np
 import torch
 
+from instructmove_ms.layout import Workspace
+
 
 class InstructMoveAgent:
     """Mixin for ManiSkill agents used by InstructMove tasks.
@@ -12,6 +14,9 @@ class InstructMoveAgent:
     A subclass provides ``keyframes["rest"]``, ``arm_joint_names`` (every arm joint, all
     arms), ``tcp_links`` (one TCP link per arm) and ``is_grasping(actor)`` (any arm).
     """
+
+    #: Where objects may be placed: the reference workspace, narrowed to the robot's reach.
+    workspace = Workspace()
 
     @property
     def tcp_links(self) -> list:

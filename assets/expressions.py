@@ -85,6 +85,11 @@ def features(inst: Instance) -> list[tuple[str, str]]:
     return sorted(found.items())
 
 
+def _be(noun: str) -> str:
+    """'are' for plural nouns (sticky notes, chopsticks), 'is' otherwise (glass, floss)."""
+    return "are" if noun.endswith("s") and not noun.endswith("ss") else "is"
+
+
 def _with(word: str, color: str | None) -> str:
     article = "" if word.endswith("s") else "an " if word[0] in "aeiou" else "a "
     if color:
@@ -101,7 +106,12 @@ def all_phrases(inst: Instance) -> list[str]:
     shape = SHAPE_ADJECTIVE.get(inst.shape)
     out: list[str] = []
     for noun in inst.nouns:
-        out += [noun, f"{color} {noun}", f"{noun} that is {color}", f"{color}-colored {noun}"]
+        out += [
+            noun,
+            f"{color} {noun}",
+            f"{noun} that {_be(noun)} {color}",
+            f"{color}-colored {noun}",
+        ]
         if shape:
             out += [f"{shape} {noun}", f"{shape} {color} {noun}"]
         if len(inst.colors) == 2:

@@ -129,6 +129,50 @@ def _cmd_assets_import(args: argparse.Namespace) -> int:
     return 1 if rejected else 0
 
 
+def _cmd_episodes_write(args: argparse.Namespace) -> int:
+    from pathlib import Path
+
+    import gymnasium as gym
+    from tqdm import tqdm
+
+    import instructmove_ms  # noqa: F401  (registration)
+    from instructmove_ms import heldout
+    from instructmove_ms.tasks import TASKS
+
+    tasks = [args.task] if args.task else list(TASKS)
+    out = Path(args.out) if args.out else None
+    for env_id in tasks:
+        for robot in [args.robot] if args.robot else TASKS[env_id].supported_robots:
+            for split in heldout.EVAL_SPLITS:
+                env = gym.make(
+                    env_id, robot_uids=robot, split=split, obs_mode="state", render_backend="none"
+                )
+                specs = list(
+                    tqdm(
+                        heldout.generate_set(env, args.n),
+                        total=args.n,
+                        desc=f"{env_id} {robot} {split}",
+                        unit="episode",
+                    )
+                )
+                env.close()
+                path = heldout.write_set(heldout.set_path(env_id, robot, split, out), specs)
+                tqdm.write(f"{len(specs)} episodes -> {path}")
+    return 0
+
+
+def _cmd_episodes_show(args: argparse.Namespace) -> int:
+    from instructmove_ms import heldout
+    from instructmove_ms.tasks import TASKS
+
+    robot = args.robot or TASKS[args.task].default_robot
+    specs = heldout.load_set(args.task, robot, args.split)
+    if not 0 <= args.index < len(specs):
+        raise ValueError(f"--index {args.index} outside the set's 0..{len(specs) - 1}")
+    print(json.dumps(specs[args.index].to_dict(), indent=2))
+    return 0
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(prog="instructmove", description=__doc__)
     sub = parser.add_subparsers(dest="command", required=True)
@@ -141,6 +185,20 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--seed", type=int, default=0)
     p.add_argument("--no-render", action="store_true", help="build the scene without a renderer")
     p.set_defaults(func=_cmd_episode)
+    episodes = sub.add_parser("episodes", help="held-out evaluation episode sets")
+    episodes_sub = episodes.add_subparsers(dest="episodes_command", required=True)
+    p = episodes_sub.add_parser("write", help="sample and store the held-out sets")
+    p.add_argument("--task", default=None, help="one env id (default: every family)")
+    p.add_argument("--robot", default=None, help="one robot (default: every supported one)")
+    p.add_argument("--n", type=int, default=100, help="episodes per set")
+    p.add_argument("--out", default=None, help="folder (default: the package's own)")
+    p.set_defaults(func=_cmd_episodes_write)
+    p = episodes_sub.add_parser("show", help="print one stored held-out episode spec")
+    p.add_argument("--task", default="PickCategory-InstructMove")
+    p.add_argument("--robot", default=None)
+    p.add_argument("--split", default="seen")
+    p.add_argument("--index", type=int, default=0)
+    p.set_defaults(func=_cmd_episodes_show)
     assets = sub.add_parser("assets", help="the object library").add_subparsers(
         dest="assets_command", required=True
     )

@@ -37,14 +37,16 @@ class EpisodeSpec:
     target: int  # index into ``objects`` of the instruction-consistent goal; -1 if none
     candidates: tuple[int, ...]  # indices of the plausible candidate goals
     robot_qpos: tuple[float, ...]
-    destinations: tuple[int, ...] = ()
+    destinations: tuple[int, ...] = ()  # indices of the candidate receptacles (PlaceA2B)
+    goal_destination: int = -1  # index of the instruction-consistent receptacle, -1 if none
+    cue: dict = field(default_factory=dict)  # how the instruction singles out the goal
     condition: str = "normal"
     version: int = field(default=SPEC_VERSION)
 
     def __post_init__(self) -> None:
         if self.target >= len(self.objects):
             raise ValueError(f"target index {self.target} outside {len(self.objects)} objects")
-        if self.condition == "normal" and self.target not in self.candidates:
+        if self.target >= 0 and self.target not in self.candidates:
             raise ValueError("the target must be one of the candidate goals")
 
     def to_dict(self) -> dict:
@@ -76,3 +78,8 @@ class EpisodeSpec:
     @property
     def target_object(self) -> ObjectSpec | None:
         return self.objects[self.target] if self.target >= 0 else None
+
+    @property
+    def num_goals(self) -> int:
+        """|G|: candidate objects, times candidate receptacles for pick-and-place."""
+        return len(self.candidates) * max(1, len(self.destinations))

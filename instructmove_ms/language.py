@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from .assets.catalog import Instance
-from .assets.expressions import expressions
+from .assets.expressions import MATERIAL_ADJECTIVE, SHAPE_ADJECTIVE, expressions
 
 UNSEEN_SPLITS = ("unseen_instance", "unseen_category")
 
@@ -21,3 +21,24 @@ def render(rng: np.random.Generator, templates: tuple[str, ...], **slots: str) -
     """Fill a randomly chosen template; every slot must be used by the templates."""
     template = templates[int(rng.integers(len(templates)))]
     return template.format(**slots)
+
+
+def noun(rng: np.random.Generator, instance: Instance) -> str:
+    return instance.nouns[int(rng.integers(len(instance.nouns)))]
+
+
+def attribute_word(instance: Instance, attribute: str, direction: str = "") -> str | None:
+    """The word naming ``instance``'s value of ``attribute`` (None if people have none):
+    its first colour, material or shape adjective, or a superlative for its extent."""
+    if attribute == "color":
+        return instance.colors[0]
+    if attribute == "material":
+        return MATERIAL_ADJECTIVE.get(instance.material)
+    if attribute == "shape":
+        return SHAPE_ADJECTIVE.get(instance.shape)
+    return {"larger": "biggest", "smaller": "smallest"}[direction]
+
+
+def preposition(receptacle: Instance) -> str:
+    """'on' for flat destinations (plates, boards, mats), 'in' for the others."""
+    return "on" if receptacle.interior is not None and receptacle.interior.height < 0.03 else "in"

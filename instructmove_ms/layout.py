@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -64,6 +65,10 @@ def gap(a: np.ndarray, b: np.ndarray) -> float:
     )
 
 
+#: accept(index, placement, placed so far) -> whether the placement is allowed.
+Accept = Callable[[int, Placement, dict[int, Placement]], bool]
+
+
 def sample_layout(
     rng: np.random.Generator,
     halves: list[tuple[float, float]],
@@ -71,12 +76,16 @@ def sample_layout(
     clearance: float,
     tries_per_object: int = 256,
     restarts: int = 64,
+    order: list[int] | None = None,
+    accept: Accept | None = None,
 ) -> list[Placement]:
-    """Place every footprint with at least ``clearance`` between any two, in order given.
+    """Place every footprint with at least ``clearance`` between any two.
 
-    Larger footprints go first internally; the result follows the input order.
+    Objects are placed in ``order`` (default: largest footprint first), each also passing
+    ``accept`` (relation constraints); the result follows the input order.
     """
-    order = sorted(range(len(halves)), key=lambda i: -halves[i][0] * halves[i][1])
+    if order is None:
+        order = sorted(range(len(halves)), key=lambda i: -halves[i][0] * halves[i][1])
     pad = clearance / 2
     padded = [(h[0] + pad, h[1] + pad) for h in halves]
     for _ in range(restarts):
@@ -89,7 +98,9 @@ def sample_layout(
                     float(rng.uniform(-math.pi, math.pi)),
                 )
                 quad = corners(padded[i], p)
-                if all(_separated(quad, other) for _, other in placed.values()):
+                if all(_separated(quad, other) for _, other in placed.values()) and (
+                    accept is None or accept(i, p, {k: v[0] for k, v in placed.items()})
+                ):
                     placed[i] = (p, quad)
                     break
             else:

@@ -16,9 +16,14 @@ from .assets.catalog import Catalog, Instance, is_held_out_category
 from .validation import check_choice
 
 SPLITS = ("train", "seen", "unseen_instance", "unseen_category")
-ATTRIBUTES = ("category", "super_category", "color", "shape", "material", "size", "name")
+ATTRIBUTES = ("category", "super_category", "color", "shape", "material", "size", "name", "extent")
+RELATIONS = ("match", "differ", "smaller", "larger")
+#: "smaller" / "larger" on "extent" (the largest dimension) need this ratio, so that a person
+#: sees the difference at a glance.
+EXTENT_RATIO = 1.3
 TAGS = ("graspable", "container")
 EACH_OTHER = "each_other"
+POOLS = ("target", "distractor", "any")
 
 
 @dataclass(frozen=True)
@@ -32,7 +37,9 @@ class Constraint:
 
     def __post_init__(self) -> None:
         check_choice("constraint attribute", self.attribute, ATTRIBUTES)
-        check_choice("constraint relation", self.relation, ("match", "differ"))
+        check_choice("constraint relation", self.relation, RELATIONS)
+        if (self.relation in ("smaller", "larger")) != (self.attribute == "extent"):
+            raise ValueError("'smaller' and 'larger' compare the 'extent' attribute only")
 
     def __str__(self) -> str:
         return f"{self.attribute} must {self.relation} {self.other}"
@@ -42,12 +49,14 @@ class Constraint:
 class RoleSpec:
     name: str
     count: int
-    pool: str = "distractor"  # "target": the split's held-out pool; "distractor": seen assets
+    pool: str = "distractor"  # "target": the split's pool; "distractor": seen; "any": both
     require: tuple[str, ...] = ("graspable",)
     constraints: tuple[Constraint, ...] = ()
+    max_footprint: float | None = None  # largest horizontal extent, metres
+    min_interior: float | None = None  # narrowest interior width of a container, metres
 
     def __post_init__(self) -> None:
-        check_choice("role pool", self.pool, ("target", "distractor"))
+        check_choice("role pool", self.pool, POOLS)
         for tag in self.require:
             check_choice("capability tag", tag, TAGS)
 
@@ -85,7 +94,7 @@ def _values(inst: Instance, attribute: str) -> frozenset:
     return frozenset([getattr(inst, attribute)])
 
 
-def _names_clash(a: frozenset, b: frozenset) -> bool:
+def names_clash(a: frozenset, b: frozenset) -> bool:
     """True if a noun of one is a word sequence inside a noun of the other ("pen" in "marker
     pen"), so that an instruction naming one could mean the other."""
 
@@ -97,15 +106,30 @@ def _names_clash(a: frozenset, b: frozenset) -> bool:
 
 def _holds(relation: str, attribute: str, mine: frozenset, theirs: frozenset) -> bool:
     if attribute == "name":
-        same = _names_clash(mine, theirs)
+        same = names_clash(mine, theirs)
     else:
         same = mine == theirs if relation == "match" else bool(mine & theirs)
     return same if relation == "match" else not same
 
 
 def _satisfies(inst: Instance, c: Constraint, others: list[Instance]) -> bool:
+    if c.attribute == "extent":  # mine must be smaller (larger) than every other's
+        ratio = EXTENT_RATIO if c.relation == "larger" else 1.0 / EXTENT_RATIO
+        return all(
+            (max(inst.dims) >= ratio * max(o.dims)) == (c.relation == "larger") for o in others
+        )
     mine = _values(inst, c.attribute)
     return all(_holds(c.relation, c.attribute, mine, _values(o, c.attribute)) for o in others)
+
+
+def _fits(inst: Instance, role: RoleSpec) -> bool:
+    if not all(getattr(inst, f"is_{tag}") for tag in role.require):
+        return False
+    if role.max_footprint is not None and max(inst.dims[:2]) > role.max_footprint:
+        return False
+    return role.min_interior is None or (
+        inst.interior is not None and 2 * min(inst.interior.half) >= role.min_interior
+    )
 
 
 def rank(seed: int, role: str, slot: int, uuid: str) -> int:
@@ -117,15 +141,17 @@ def resolve_roles(
     roles: tuple[RoleSpec, ...], catalog: Catalog, split: str, seed: int
 ) -> dict[str, list[Instance]]:
     """Assign instances to every role, in order; the same inputs give the same assignment."""
-    pools = dict(zip(("target", "distractor"), split_pools(catalog, split), strict=True))
+    targets, seen = split_pools(catalog, split)
+    known = {i.uuid for i in targets}
+    pools = {
+        "target": targets,
+        "distractor": seen,
+        "any": targets + [i for i in seen if i.uuid not in known],
+    }
     assigned: dict[str, list[Instance]] = {}
     used: set[str] = set()
     for role in roles:
-        pool = [
-            i
-            for i in pools[role.pool]
-            if all(getattr(i, f"is_{tag}") for tag in role.require) and i.uuid not in used
-        ]
+        pool = [i for i in pools[role.pool] if _fits(i, role) and i.uuid not in used]
         members: list[Instance] = []
         for slot in range(role.count):
             candidates = pool

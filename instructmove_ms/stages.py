@@ -35,3 +35,49 @@ def first_index(mask: torch.Tensor, score: torch.Tensor) -> torch.Tensor:
 def latch_first(current: torch.Tensor, candidate: torch.Tensor) -> torch.Tensor:
     """Keep ``current`` where set (>= 0), else take ``candidate``."""
     return torch.where(current >= 0, current, candidate)
+
+
+class StageTracker:
+    """Latched stage flags of N sub-scenes; each stage counts only after the previous one.
+
+    Pick families: reach -> lift. PlaceA2B adds reach_place -> place after lift. Without a
+    target (generic, empty, absent_object conditions) only any-object stages move.
+    """
+
+    STAGES = ("reach", "lift", "reach_place", "place")
+
+    def __init__(self, num_envs: int, device) -> None:
+        self.flags = {
+            s: torch.zeros(num_envs, dtype=torch.bool, device=device) for s in self.STAGES
+        }
+        self.reached_object = torch.full((num_envs,), -1, dtype=torch.long, device=device)
+        self.lifted_object = torch.full_like(self.reached_object, -1)
+
+    def reset(self, env_idx: torch.Tensor) -> None:
+        for flag in self.flags.values():
+            flag[env_idx] = False
+        self.reached_object[env_idx] = -1
+        self.lifted_object[env_idx] = -1
+
+    def update(
+        self,
+        target: torch.Tensor,
+        dist: torch.Tensor,
+        within: torch.Tensor,
+        lifted: torch.Tensor,
+        rise: torch.Tensor,
+        over_goal: torch.Tensor,
+        placed: torch.Tensor,
+    ) -> None:
+        """``target`` (N,) index or -1; ``dist``, ``within``, ``lifted``, ``rise`` (N, K) per
+        object; ``over_goal``, ``placed`` (N,) for the target object."""
+        rows = torch.arange(target.shape[0], device=target.device)
+        has = target >= 0
+        t = target.clamp(min=0)
+        f = self.flags
+        self.reached_object = latch_first(self.reached_object, first_index(within, dist))
+        self.lifted_object = latch_first(self.lifted_object, first_index(lifted, -rise))
+        f["reach"] |= has & within[rows, t]
+        f["lift"] |= has & lifted[rows, t] & f["reach"]
+        f["reach_place"] |= over_goal & f["lift"]
+        f["place"] |= placed & f["reach_place"]

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import dataclasses
-import math
 from typing import Any, ClassVar
 
 import numpy as np
@@ -12,25 +11,21 @@ import torch
 from mani_skill.envs.sapien_env import BaseEnv
 from mani_skill.sensors.camera import CameraConfig
 from mani_skill.utils import sapien_utils
+from mani_skill.utils.geometry.rotation_conversions import quaternion_apply, quaternion_invert
 from mani_skill.utils.structs.actor import Actor
 from mani_skill.utils.structs.pose import Pose
 from mani_skill.utils.structs.types import SimConfig
 
 from instructmove_ms.assets import DEFAULT_SNAPSHOT, load_snapshot
-from instructmove_ms.assets.catalog import Instance
 from instructmove_ms.assets.sapien_builder import actor_builder
-from instructmove_ms.episode import EpisodeSpec, ObjectSpec
-from instructmove_ms.language import referring_expression, render
-from instructmove_ms.layout import sample_layout
-from instructmove_ms.sampler import SPLITS, resolve_roles
-from instructmove_ms.stages import box_distance, first_index, latch_first
+from instructmove_ms.composer import compose
+from instructmove_ms.episode import CONDITIONS, EpisodeSpec
+from instructmove_ms.sampler import SPLITS
+from instructmove_ms.stages import StageTracker, box_distance
 from instructmove_ms.validation import check_choice, check_range
 
 from .scene import build_table
 from .spec import TaskSpec
-
-#: Objects spawn this far above the table and settle in the first physics steps.
-SPAWN_LIFT = 0.002
 
 
 class InstructMoveEnv(BaseEnv):
@@ -52,17 +47,20 @@ class InstructMoveEnv(BaseEnv):
         num_distractors: int | None = None,
         robot_init_qpos_noise: float = 0.02,
         snapshot: str = DEFAULT_SNAPSHOT,
+        condition: str = "normal",
         **kwargs,
     ):
         robot_uids = robot_uids or self.task.default_robot
         check_choice("robot_uids", robot_uids, self.task.supported_robots)
         check_choice("split", split, SPLITS)
+        check_choice("condition", condition, CONDITIONS)
         if num_distractors is None:
             num_distractors = self.task.role("distractor").count
         check_range("num_distractors", num_distractors, *self.task.count_limits["distractor"])
         if not robot_init_qpos_noise >= 0:
             raise ValueError(f"robot_init_qpos_noise must be >= 0, got {robot_init_qpos_noise!r}")
         self.split = split
+        self.condition = condition
         self.num_distractors = num_distractors
         self._roles = tuple(
             dataclasses.replace(r, count=num_distractors) if r.name == "distractor" else r
@@ -101,6 +99,10 @@ class InstructMoveEnv(BaseEnv):
         sub-scene). Pass the dict form when recording so that the reset kwargs stay JSON.
         """
         options = dict(options or {})
+        if "condition" in options:
+            check_choice("condition", options["condition"], CONDITIONS)
+            self.condition = options.pop("condition")
+            options["reconfigure"] = True
         if "episode" in options:
             self._requested = self._coerce_episodes(options.pop("episode"))
             options["reconfigure"] = True
@@ -126,47 +128,19 @@ class InstructMoveEnv(BaseEnv):
             raise ValueError("all sub-scenes must hold the same number of objects")
         return specs
 
-    def _sample_roles(self, seed: int) -> list[tuple[Instance, str]]:
-        assigned = resolve_roles(self._roles, self.catalog, self.split, seed)
-        return [(inst, role) for role, members in assigned.items() for inst in members]
-
-    def _render_instruction(self, rng: np.random.Generator, target: Instance) -> str:
-        return render(
-            rng, self.task.templates, target=referring_expression(rng, target, self.split)
-        )
-
-    def sample_episode(self, seed: int) -> EpisodeSpec:
-        """The episode of ``seed``: objects, layout, robot joints and instruction."""
-        rng = np.random.default_rng(seed)
-        roles = self._sample_roles(seed)
-        roles = [roles[k] for k in rng.permutation(len(roles))]
-        halves = []
-        for inst, _ in roles:
-            lo, hi = inst.bounds
-            halves.append((float(hi[0] - lo[0]) / 2, float(hi[1] - lo[1]) / 2))
-        places = sample_layout(rng, halves, self.task.workspace, self.task.clearance)
-        objects = tuple(
-            ObjectSpec(
-                inst.uuid,
-                inst.category,
-                role,
-                (p.x, p.y, SPAWN_LIFT, math.cos(p.yaw / 2), 0.0, 0.0, math.sin(p.yaw / 2)),
-            )
-            for (inst, role), p in zip(roles, places, strict=True)
-        )
-        target = next(k for k, (_, role) in enumerate(roles) if role == "target")
-        qpos = self.agent.sample_init_qpos(rng, self.robot_init_qpos_noise)
-        return EpisodeSpec(
-            family=self.task.family,
-            robot=self.robot_uids,
-            snapshot=self.catalog.name,
-            split=self.split,
-            seed=int(seed),
-            instruction=self._render_instruction(rng, roles[target][0]),
-            objects=objects,
-            target=target,
-            candidates=tuple(range(len(objects))),
-            robot_qpos=tuple(float(q) for q in qpos),
+    def sample_episode(self, seed: int, condition: str | None = None) -> EpisodeSpec:
+        """The episode of ``seed`` under ``condition`` (default: the env's); see
+        ``composer.compose``."""
+        return compose(
+            self.task,
+            self._roles,
+            self.catalog,
+            self.split,
+            seed,
+            self.robot_uids,
+            lambda rng: self.agent.sample_init_qpos(rng, self.robot_init_qpos_noise),
+            condition or self.condition,
+            self.agent.workspace,
         )
 
     @property
@@ -208,12 +182,19 @@ class InstructMoveEnv(BaseEnv):
         boxes_t = torch.tensor(np.asarray(boxes), dtype=torch.float32, device=self.device)
         self._box_center, self._box_half = boxes_t[..., :3], boxes_t[..., 3:]
         self._target = torch.tensor([ep.target for ep in self.episodes], device=self.device)
-        n, k = self.num_envs, len(self.objects)
-        self._z0 = torch.zeros((n, k), device=self.device)
-        self._reach = torch.zeros(n, dtype=torch.bool, device=self.device)
-        self._lift = torch.zeros_like(self._reach)
-        self._reached_object = torch.full((n,), -1, dtype=torch.long, device=self.device)
-        self._lifted_object = torch.full_like(self._reached_object, -1)
+        self._goal = torch.tensor([ep.goal_destination for ep in self.episodes], device=self.device)
+        regions = []
+        for ep in self.episodes:  # the goal receptacle's interior: floor centre and half size
+            region = (
+                self.catalog[ep.objects[ep.goal_destination].uuid].interior
+                if ep.goal_destination >= 0
+                else None
+            )
+            regions.append([*region.center, *region.half] if region else [0.0] * 5)
+        regions_t = torch.tensor(regions, dtype=torch.float32, device=self.device)
+        self._goal_center, self._goal_half = regions_t[:, :3], regions_t[:, 3:]
+        self._z0 = torch.zeros((self.num_envs, len(self.objects)), device=self.device)
+        self._stages = StageTracker(self.num_envs, self.device)
 
     def _initialize_episode(self, env_idx: torch.Tensor, options: dict) -> None:
         idx = [int(i) for i in env_idx]
@@ -234,10 +215,7 @@ class InstructMoveEnv(BaseEnv):
         self.agent.robot.set_pose(
             Pose.create_from_pq(torch.zeros((len(idx), 3), device=self.device))
         )
-        self._reach[env_idx] = False
-        self._lift[env_idx] = False
-        self._reached_object[env_idx] = -1
-        self._lifted_object[env_idx] = -1
+        self._stages.reset(env_idx)
 
     # Scoring --------------------------------------------------------------------------
     def _object_poses(self) -> tuple[torch.Tensor, torch.Tensor]:
@@ -251,30 +229,74 @@ class InstructMoveEnv(BaseEnv):
             grasped[:, k] = self.agent.is_grasping(self.objects[k])
         return grasped
 
+    def _goal_frame(self, points: torch.Tensor) -> torch.Tensor:
+        """``points`` (N, 3) in the goal receptacle's frame, relative to its floor centre."""
+        pos, quat = self._object_poses()
+        rows = torch.arange(self.num_envs, device=self.device)
+        g = self._goal.clamp(min=0)
+        rel = points - pos[rows, g]
+        return quaternion_apply(quaternion_invert(quat[rows, g]), rel) - self._goal_center
+
+    def _place_flags(self, pos: torch.Tensor, grasped: torch.Tensor):
+        """(over the goal interior, resting on its floor and released) for the target."""
+        rows = torch.arange(self.num_envs, device=self.device)
+        t = self._target.clamp(min=0)
+        local = self._goal_frame(pos[rows, t])
+        over = (self._goal >= 0) & (local[:, :2].abs() <= self._goal_half).all(dim=1)
+        speed = torch.stack([o.linear_velocity for o in self.objects], dim=1)[rows, t]
+        th = self.task.thresholds
+        resting = (local[:, 2] > -0.01) & (local[:, 2] < th.place_height)
+        still = torch.linalg.norm(speed, dim=1) < th.place_speed
+        return over, over & resting & still & ~grasped[rows, t]
+
     def evaluate(self) -> dict:
         th = self.task.thresholds
         pos, quat = self._object_poses()
         dist = box_distance(
             self.agent.tcp_positions(), pos, quat, self._box_center, self._box_half
         ).amin(dim=1)
-        rows = torch.arange(self.num_envs, device=self.device)
-        within = dist < th.reach
-        self._reached_object = latch_first(self._reached_object, first_index(within, dist))
-        self._reach |= within[rows, self._target]
-        raised = (pos[..., 2] - self._z0) > th.lift
-        lifted = raised & self._grasped(raised)
         rise = pos[..., 2] - self._z0
-        self._lifted_object = latch_first(self._lifted_object, first_index(lifted, -rise))
-        self._lift |= lifted[rows, self._target] & self._reach
-        return {
-            "success": self._lift.clone(),
-            "reach": self._reach.clone(),
-            "lift": self._lift.clone(),
-            "stage_score": 0.5 * self._reach.float() + 0.5 * self._lift.float(),
-            "reached_object": self._reached_object.clone(),
-            "lifted_object": self._lifted_object.clone(),
-            "target_distance": dist[rows, self._target],
+        raised = rise > th.lift
+        watch = raised.clone()
+        if self.task.is_place:  # release is part of placing: watch the target's grasp
+            watch[torch.arange(self.num_envs, device=self.device), self._target.clamp(min=0)] = True
+        grasped = self._grasped(watch)
+        over, placed = (
+            self._place_flags(pos, grasped)
+            if self.task.is_place
+            else (torch.zeros_like(self._target, dtype=torch.bool),) * 2
+        )
+        stages = self._stages
+        stages.update(self._target, dist, dist < th.reach, raised & grasped, rise, over, placed)
+        f = {k: v.clone() for k, v in stages.flags.items()}
+        rows = torch.arange(self.num_envs, device=self.device)
+        info = {
+            "reach": f["reach"],
+            "lift": f["lift"],
+            "reached_object": stages.reached_object.clone(),
+            "lifted_object": stages.lifted_object.clone(),
+            "any_reach": stages.reached_object >= 0,
+            "any_lift": stages.lifted_object >= 0,
+            "target_distance": torch.where(
+                self._target >= 0,
+                dist[rows, self._target.clamp(min=0)],
+                torch.full_like(dist[:, 0], torch.inf),
+            ),
         }
+        if self.task.is_place:
+            info.update(
+                reach_pick=f["reach"],
+                lift_pick=f["lift"],
+                reach_place=f["reach_place"],
+                place=f["place"],
+                success=f["place"],
+                stage_score=0.25 * sum(f[k].float() for k in StageTracker.STAGES),
+            )
+        else:
+            info.update(
+                success=f["lift"], stage_score=0.5 * f["reach"].float() + 0.5 * f["lift"].float()
+            )
+        return info
 
     def _get_obs_extra(self, info: dict) -> dict:
         obs = dict(tcp_pose=self.agent.tcp_state())
@@ -286,18 +308,29 @@ class InstructMoveEnv(BaseEnv):
 
     # Rewards --------------------------------------------------------------------------
     def compute_dense_reward(self, obs: Any, action: torch.Tensor, info: dict) -> torch.Tensor:
-        """Approach the target, grasp it, raise it: 1 + 1 + 2, and 5 on success."""
+        """Staged: approach the target (1), grasp it (1), raise it (2); for PlaceA2B then
+        carry it over the goal receptacle (2) and release it there (1). Success gives the
+        maximum; episodes without a target get 0."""
         rows = torch.arange(self.num_envs, device=self.device)
+        t = self._target.clamp(min=0)
         pos, _ = self._object_poses()
-        rise = pos[rows, self._target, 2] - self._z0[rows, self._target]
+        rise = pos[rows, t, 2] - self._z0[rows, t]
         grasped = torch.zeros(self.num_envs, dtype=torch.bool, device=self.device)
-        for k in torch.unique(self._target).tolist():
-            grasped |= (self._target == k) & self.agent.is_grasping(self.objects[k])
-        reward = 1.0 - torch.tanh(10.0 * info["target_distance"])
-        reward = reward + grasped.float() * (
-            1.0 + 2.0 * (rise / self.task.thresholds.lift).clamp(0, 1)
-        )
-        return torch.where(info["success"], torch.full_like(reward, 5.0), reward)
+        for k in torch.unique(t).tolist():
+            grasped |= (t == k) & self.agent.is_grasping(self.objects[k])
+        reward = 1.0 - torch.tanh(10.0 * info["target_distance"].clamp(max=10.0))
+        lifted = (rise / self.task.thresholds.lift).clamp(0, 1)
+        reward = reward + grasped.float() * (1.0 + 2.0 * lifted)
+        if self.task.is_place:
+            away = torch.linalg.norm(self._goal_frame(pos[rows, t])[:, :2], dim=1)
+            reward = reward + lifted * grasped.float() * 2.0 * (1.0 - torch.tanh(5.0 * away))
+            reward = reward + info["reach_place"].float() * (~grasped).float()
+        reward = torch.where(self._target >= 0, reward, torch.zeros_like(reward))
+        return torch.where(info["success"], torch.full_like(reward, self._max_reward), reward)
+
+    @property
+    def _max_reward(self) -> float:
+        return 8.0 if self.task.is_place else 5.0
 
     def compute_normalized_dense_reward(self, obs: Any, action: torch.Tensor, info: dict):
-        return self.compute_dense_reward(obs, action, info) / 5.0
+        return self.compute_dense_reward(obs, action, info) / self._max_reward

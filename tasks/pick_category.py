@@ -9,9 +9,23 @@ from instructmove_ms.sampler import EACH_OTHER, Constraint, RoleSpec
 from .base import InstructMoveEnv
 from .spec import TaskSpec
 
+PICK_TEMPLATES = (
+    "pick up the {target}",
+    "pick the {target} up",
+    "grab the {target}",
+    "lift the {target}",
+    "grasp the {target} and lift it",
+    "take the {target} off the table",
+    "raise the {target}",
+    "please pick up the {target}",
+    "can you lift the {target}",
+    "get the {target} and hold it up",
+)
+
 PICK_CATEGORY = TaskSpec(
     env_id="PickCategory-InstructMove",
     family="pick_category",
+    cue="category",
     default_robot="franka",
     supported_robots=("franka",),
     roles=(
@@ -23,22 +37,12 @@ PICK_CATEGORY = TaskSpec(
                 Constraint("category", "differ", "target"),
                 Constraint("category", "differ", EACH_OTHER),
                 Constraint("name", "differ", "target"),
+                Constraint("name", "differ", EACH_OTHER),
             ),
         ),
     ),
     count_limits={"distractor": (1, 5)},
-    templates=(
-        "pick up the {target}",
-        "pick the {target} up",
-        "grab the {target}",
-        "lift the {target}",
-        "grasp the {target} and lift it",
-        "take the {target} off the table",
-        "raise the {target}",
-        "please pick up the {target}",
-        "can you lift the {target}",
-        "get the {target} and hold it up",
-    ),
+    templates=PICK_TEMPLATES,
 )
 
 

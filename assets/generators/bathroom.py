@@ -5,56 +5,11 @@ from __future__ import annotations
 import math
 from itertools import pairwise
 
-from ..design import Design, Traits
-from ..parts import axis_angle_quat, quat_mul
+from ..design import Design, Point, Traits
 from .desktop import BRIGHT
 from .registry import generator
 
-Point = tuple[float, float, float]
 PASTEL = ["white", "white", "pink", "blue", "green", "beige", "purple", "yellow"]
-
-
-def strut(
-    d: Design,
-    name: str,
-    a: Point,
-    b: Point,
-    cross: tuple[float, ...],
-    material: str,
-    color: str,
-    shape: str = "box",
-    **kw,
-) -> None:
-    """A part from ``a`` to ``b``: a box of half cross-section ``cross`` = (half width, half
-    thickness), or a cylinder/capsule of radius ``cross[0]``; the width stays horizontal."""
-    v = [q - p for p, q in zip(a, b, strict=True)]
-    length = math.dist(a, b)
-    yaw = math.atan2(v[1], v[0])
-    pitch = -math.atan2(v[2], math.hypot(v[0], v[1]))
-    quat = quat_mul(axis_angle_quat((0, 0, 1), yaw), axis_angle_quat((0, 1, 0), pitch))
-    if shape == "box":
-        size = (length / 2, *cross)
-    else:
-        size = (cross[0], length / 2 - (cross[0] if shape == "capsule" else 0.0))
-    center = tuple((p + q) / 2 for p, q in zip(a, b, strict=True))
-    d.add(name, shape, size, center, material, color, quat=quat, **kw)
-
-
-def stadium(
-    d: Design,
-    name: str,
-    half_len: float,
-    radius: float,
-    z0: float,
-    height: float,
-    material: str,
-    color: str,
-    **kw,
-) -> None:
-    """A vertical prism with a rounded-rectangle section, long along x."""
-    d.box(name, (half_len, radius, height / 2), (0, 0, z0 + height / 2), material, color, **kw)
-    for k, x in enumerate((-half_len, half_len)):
-        d.upright(f"{name}_end_{k}", radius, height, z0, material, color, xy=(x, 0), **kw)
 
 
 def _flip_cap(d: Design, radius: float, z0: float, color: str) -> None:
@@ -75,9 +30,9 @@ def _pump(d: Design, z0: float, color: str, nozzle: float) -> None:
     d.upright("stem", 0.0045, stem, z0 + 0.012, "plastic", color)
     top = z0 + 0.012 + stem
     d.upright("pump_head", collar * 0.9, 0.012, top, "plastic", color)
-    strut(
-        d,
+    d.segment(
         "nozzle",
+        "box",
         (0, 0, top + 0.007),
         (collar + nozzle, 0, top + 0.005),
         (0.004, 0.0035),
@@ -91,7 +46,7 @@ def _polyline(
 ) -> None:
     """Plastic boxes joining consecutive ``points``: a bent strip."""
     for k, (a, b) in enumerate(pairwise(points)):
-        strut(d, f"{name}_{k}", a, b, cross, "plastic", color)
+        d.segment(f"{name}_{k}", "box", a, b, cross, "plastic", color)
 
 
 @generator(
@@ -231,15 +186,15 @@ def nail_clipper(d: Design) -> Traits:
     length, w = d.uniform(0.055, 0.085), d.uniform(0.012, 0.016)
     xb, xf = -length / 2, length / 2 - 0.005
     d.box("lower_jaw", (length / 2, w / 2, 0.001), (0, 0, 0.001), "metal", color)
-    strut(d, "upper_jaw", (xb, 0, 0.003), (xf, 0, 0.0065), (w / 2, 0.001), "metal", color)
+    d.segment("upper_jaw", "box", (xb, 0, 0.003), (xf, 0, 0.0065), (w / 2, 0.001), "metal", color)
     d.box("cutting_edge", (0.003, w / 2, 0.0035), (length / 2 - 0.003, 0, 0.0035), "metal", color)
     d.box("joint", (0.003, w / 2, 0.002), (xb + 0.003, 0, 0.002), "metal", color)
     pin = xf - 0.008
     d.upright("pin", 0.0018, 0.011, 0.0, "metal", "silver", xy=(pin, 0))
     top = 0.0115
-    strut(
-        d,
+    d.segment(
         "lever",
+        "box",
         (pin + 0.004, 0, top),
         (xb - 0.004, 0, top + 0.004),
         (w * 0.55, 0.001),
@@ -262,8 +217,8 @@ def dental_floss(d: Design) -> Traits:
     half_len = d.choice([0.0, d.uniform(0.005, 0.01)])
     base_h = h * 0.65
     if half_len:
-        stadium(d, "case", half_len, r, 0.0, base_h, "plastic", color, solid_fraction=0.7)
-        stadium(d, "lid", half_len, r, base_h, h - base_h, "plastic", lid, solid_fraction=0.7)
+        d.stadium("case", half_len, r, 0.0, base_h, "plastic", color, solid_fraction=0.7)
+        d.stadium("lid", half_len, r, base_h, h - base_h, "plastic", lid, solid_fraction=0.7)
     else:
         d.upright("case", r, base_h, 0.0, "plastic", color, solid_fraction=0.7)
         d.upright("lid", r, h - base_h, base_h, "plastic", lid, solid_fraction=0.7)
@@ -318,7 +273,7 @@ def shampoo_bottle(d: Design) -> Traits:
     label = d.choice([c for c in ("white", "black", "silver", "golden") if c != color])
     h, r = d.uniform(0.14, 0.2), d.uniform(0.016, 0.023)
     half_len = d.choice([d.uniform(0.015, 0.025), d.uniform(0.008, 0.012)])
-    stadium(d, "body", half_len, r, 0.0, h, "plastic", color, solid_fraction=0.6)
+    d.stadium("body", half_len, r, 0.0, h, "plastic", color, solid_fraction=0.6)
     shoulder = d.uniform(0.012, 0.02)
     d.ellipsoid(
         "shoulder", (half_len + r, r, shoulder), (0, 0, h), "plastic", color, solid_fraction=0.6
@@ -410,8 +365,8 @@ def hand_sanitizer(d: Design) -> Traits:
     label = d.choice([c for c in ("blue", "green", "white", "red") if c not in (cap, gel)])
     h, r = d.uniform(0.08, 0.13), d.uniform(0.015, 0.021)
     half_len, fill = d.uniform(0.01, 0.018), h * d.uniform(0.6, 0.85)
-    stadium(d, "gel", half_len, r, 0.0, fill, "plastic", gel, solid_fraction=0.95)
-    stadium(d, "body", half_len, r, fill, h - fill, "plastic", "transparent", solid_fraction=0.1)
+    d.stadium("gel", half_len, r, 0.0, fill, "plastic", gel, solid_fraction=0.95)
+    d.stadium("body", half_len, r, fill, h - fill, "plastic", "transparent", solid_fraction=0.1)
     d.box(
         "label",
         (half_len + r * 0.6, 0.0006, h * 0.2),
@@ -441,7 +396,7 @@ def facial_cleanser(d: Design) -> Traits:
     cap = d.choice([c for c in ("white", "blue", "silver", "black", "pink") if c != color])
     cap_r, cap_h = d.uniform(0.016, 0.02), d.uniform(0.016, 0.022)
     half_len = d.uniform(0.004, 0.008)
-    stadium(d, "cap", half_len, cap_r, 0.0, cap_h, "plastic", cap)
+    d.stadium("cap", half_len, cap_r, 0.0, cap_h, "plastic", cap)
     tube_h = d.uniform(0.05, 0.07)
     w, t = d.uniform(0.022, 0.027), d.uniform(0.014, 0.017)
     d.upright("shoulder", cap_r * 0.8, 0.01, cap_h, "plastic", color)

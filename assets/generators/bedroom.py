@@ -6,9 +6,7 @@ import math
 
 from ..design import Design, Traits
 from ..parts import X_TO_Y, axis_angle_quat
-from .kitchenware import open_box
 from .registry import generator
-from .stationery import hex_rod
 
 
 def _open_lid(
@@ -57,7 +55,7 @@ def storage_box(d: Design) -> Traits:
     )
     hx, hy, h = d.uniform(0.11, 0.18), d.uniform(0.08, 0.12), d.uniform(0.1, 0.17)
     t = 0.003 if material == "plastic" else 0.006
-    floor = open_box(d, "box", (hx, hy), h, t, material, color)
+    floor = d.open_box("box", (hx, hy), h, t, material, color, full="y")
     lip = d.choice([color, "white", "black"])
     for k, sign in enumerate((-1, 1)):
         d.box(
@@ -109,7 +107,7 @@ def jewelry_box(d: Design) -> Traits:
     lining = d.choice([c for c in ("red", "purple", "black", "beige", "blue") if c != color])
     hx, hy, h = d.uniform(0.05, 0.09), d.uniform(0.035, 0.06), d.uniform(0.04, 0.06)
     t = 0.006
-    floor = open_box(d, "base", (hx, hy), h, t, material, color)
+    floor = d.open_box("base", (hx, hy), h, t, material, color, full="y")
     d.box("lining", (hx - t, hy - t, 0.001), (0, 0, floor + 0.001), "fabric", lining)
     d.box(
         "clasp",
@@ -164,7 +162,7 @@ def pill_organizer(d: Design) -> Traits:
     cell, hy, h = d.uniform(0.02, 0.028), d.uniform(0.013, 0.018), d.uniform(0.018, 0.026)
     t = 0.0018
     hx = 3.5 * cell + t / 2
-    floor = open_box(d, "tray", (hx, hy), h, t, "plastic", body)
+    floor = d.open_box("tray", (hx, hy), h, t, "plastic", body, full="y")
     rainbow = ["red", "orange", "yellow", "green", "blue", "purple", "pink"]
     for k in range(7):
         x = (k - 3) * cell
@@ -253,7 +251,7 @@ def flashlight(d: Design) -> Traits:
     rb, length = d.uniform(0.011, 0.016), d.uniform(0.11, 0.22)
     apo, head = rb + d.uniform(0.004, 0.01), d.uniform(0.025, 0.04)
     x1 = length / 2 - head / 2
-    hex_rod(d, "head", apo, head, (x1, 0, apo), material, bezel)  # anti-roll
+    d.hex_rod("head", apo, head, (x1, 0, apo), material, bezel)  # anti-roll
     d.add(
         "lens",
         "cylinder",

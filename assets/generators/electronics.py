@@ -7,28 +7,14 @@ import math
 from ..design import Design, Traits
 from ..parts import axis_angle_quat
 from .registry import generator
-from .stationery import flat_ring, open_box, slab
 
 
-def stadium(d: Design, name: str, length, width, height, z0, material, color, xy=(0.0, 0.0), **kw):
-    """A slab with round ends in plan view (a pill) along x, standing on z = z0."""
+def _pill(d: Design, name: str, length, width, height, z0, material, color, **kw) -> None:
+    """A slab with round ends in plan view (a pill) along x, standing on z = z0; half of each
+    end cylinder lies inside the core box, so the ends get half its fill."""
     fill = kw.pop("solid_fraction", 1.0)
-    core = max(length - width, 1e-4)
-    half = (core / 2, width / 2, height / 2)
-    slab(d, name, half, z0, material, color, xy=xy, solid_fraction=fill, **kw)
-    for sign in (-1, 1):  # half of each end cylinder lies inside the core box
-        end = (xy[0] + sign * core / 2, xy[1])
-        d.upright(
-            f"{name}_end{sign}",
-            width / 2,
-            height,
-            z0,
-            material,
-            color,
-            xy=end,
-            solid_fraction=fill / 2,
-            **kw,
-        )
+    kw.update(ends=("end-1", "end1"), end_fill=fill / 2, solid_fraction=fill)
+    d.stadium(name, max(length - width, 1e-4) / 2, width / 2, z0, height, material, color, **kw)
 
 
 def dot(d: Design, name: str, radius: float, x: float, y: float, z: float, color: str) -> None:
@@ -50,7 +36,7 @@ def mouse(d: Design) -> Traits:
     shell = d.choice(["black", "gray", "white", "silver", "blue", "red"])
     skirt = d.choice(["black", "gray", shell])
     lx, w, h = d.uniform(0.095, 0.125), d.uniform(0.055, 0.068), d.uniform(0.032, 0.042)
-    stadium(d, "skirt", lx, w, h / 2, 0.0, "plastic", skirt, solid_fraction=0.3)
+    _pill(d, "skirt", lx, w, h / 2, 0.0, "plastic", skirt, solid_fraction=0.3)
     d.ellipsoid(
         "shell", (lx / 2, w / 2, h / 2), (0, 0, h / 2), "plastic", shell, solid_fraction=0.3
     )
@@ -119,8 +105,8 @@ def presenter_clicker(d: Design) -> Traits:
     color = d.choice(["black", "black", "gray", "silver", "white", "blue"])
     rocker = d.choice(["gray", "black", "silver"] if color != "black" else ["gray", "silver"])
     lx, w, t = d.uniform(0.09, 0.13), d.uniform(0.024, 0.034), d.uniform(0.012, 0.018)
-    stadium(d, "body", lx, w, t, 0.0, "plastic", color, solid_fraction=0.6)
-    stadium(
+    _pill(d, "body", lx, w, t, 0.0, "plastic", color, solid_fraction=0.6)
+    _pill(
         d,
         "rocker",
         lx * 0.32,
@@ -150,7 +136,7 @@ def gamepad(d: Design) -> Traits:
     color = d.choice(["black", "white", "gray", "blue", "red", "purple"])
     accent = "gray" if color == "black" else "black"
     w, depth, h = d.uniform(0.13, 0.16), d.uniform(0.034, 0.039), d.uniform(0.022, 0.028)
-    stadium(d, "body", w, depth, h, 0.0, "plastic", color, solid_fraction=0.5)
+    _pill(d, "body", w, depth, h, 0.0, "plastic", color, solid_fraction=0.5)
     for sign in (-1, 1):
         d.add(
             f"grip_{sign}",
@@ -212,9 +198,9 @@ def earbud_case(d: Design) -> Traits:
         lx, depth, h, split = d.uniform(0.055, 0.07), d.uniform(0.04, 0.052), 0.028, 0.55
         h *= d.uniform(0.88, 1.12)
     z = h * split
-    stadium(d, "base", lx, depth, z - 0.0005, 0.0, "plastic", color, solid_fraction=0.5)
-    stadium(d, "seam", lx - 0.0015, depth - 0.0015, 0.001, z - 0.0005, "plastic", "gray")
-    stadium(d, "lid", lx, depth, h - z - 0.0005, z + 0.0005, "plastic", color, solid_fraction=0.4)
+    _pill(d, "base", lx, depth, z - 0.0005, 0.0, "plastic", color, solid_fraction=0.5)
+    _pill(d, "seam", lx - 0.0015, depth - 0.0015, 0.001, z - 0.0005, "plastic", "gray")
+    _pill(d, "lid", lx, depth, h - z - 0.0005, z + 0.0005, "plastic", color, solid_fraction=0.4)
     led = d.choice(["green", "white", "orange"])
     d.rod(
         "led",
@@ -239,7 +225,7 @@ def charging_head(d: Design) -> Traits:
     lx, w = d.uniform(0.026, 0.045), d.uniform(0.026, 0.045)
     round_pins = d.rng.random() < 0.5
     h = d.uniform(0.027, 0.034) if round_pins else d.uniform(0.022, 0.03)
-    slab(d, "body", (lx / 2, w / 2, h / 2), 0.0, "plastic", color)
+    d.slab("body", (lx / 2, w / 2, h / 2), 0.0, "plastic", color)
     if round_pins:
         d.rod("plug_face", 0.013, 0.006, (lx / 2 + 0.003, 0, h / 2), "plastic", color)
         for sign in (-1, 1):
@@ -350,7 +336,7 @@ def mini_sculpture(d: Design) -> Traits:
     plinth = d.choice(["brown", "black"] if plinth_mat == "wood" else ["black", "white", "gray"])
     pw, ph = d.uniform(0.035, 0.055), d.uniform(0.012, 0.022)
     if d.rng.random() < 0.5:
-        slab(d, "plinth", (pw / 2, pw / 2, ph / 2), 0.0, plinth_mat, plinth)
+        d.slab("plinth", (pw / 2, pw / 2, ph / 2), 0.0, plinth_mat, plinth)
     else:
         d.upright("plinth", pw / 2, ph, 0.0, plinth_mat, plinth)
     look = (material, color)
@@ -375,7 +361,7 @@ def mini_sculpture(d: Design) -> Traits:
         th, turn = d.uniform(0.008, 0.011), d.uniform(0.12, 0.2)
         for k in range(slices):
             half = (side * (1 - 0.04 * k), side * (1 - 0.04 * k), th / 2)
-            slab(d, f"slice_{k}", half, ph + k * th, *look, yaw=k * turn, solid_fraction=fill)
+            d.slab(f"slice_{k}", half, ph + k * th, *look, yaw=k * turn, solid_fraction=fill)
         shape = "elongated"
     elif kind == "ring":
         rr, band, segs = d.uniform(0.024, 0.034), d.uniform(0.006, 0.009), 16
@@ -416,15 +402,14 @@ def phone_stand(d: Design) -> Traits:
     t = {"aluminium": 0.004, "plastic": 0.005, "wood": 0.01}[material]
     w, lx, base_t = d.uniform(0.05, 0.074), d.uniform(0.07, 0.1), t * 1.4
     lean, back = d.uniform(0.3, 0.5), d.uniform(0.08, 0.11)
-    slab(d, "base", (lx / 2, w / 2, base_t / 2), 0.0, material, color)
+    d.slab("base", (lx / 2, w / 2, base_t / 2), 0.0, material, color)
     foot = lx / 2 - d.uniform(0.02, 0.028)
     top = (foot - back * math.sin(lean), base_t + back * math.cos(lean))
     beam(d, "backrest", (foot, base_t), top, w / 2, t / 2, material, color)
     lip_x = foot + t / 2 + 0.011
-    slab(d, "lip", (0.0025, w / 2, 0.005), base_t, material, color, xy=(lip_x, 0))
+    d.slab("lip", (0.0025, w / 2, 0.005), base_t, material, color, xy=(lip_x, 0))
     pad = d.choice(["black", "gray"])
-    slab(
-        d,
+    d.slab(
         "pad",
         (0.0085, w * 0.4, 0.0004),
         base_t,
@@ -449,7 +434,7 @@ def vase(d: Design) -> Traits:
     kind = d.choice(["cylinder", "flared", "square", "bottle"])
     if kind == "square":
         hx, hy = d.uniform(0.03, 0.045), d.uniform(0.03, 0.045)
-        open_box(d, "vessel", hx, hy, h, t, floor, material, color)
+        d.open_box("vessel", (hx, hy), h, t, material, color, floor=floor, tags=(-1, 1))
         d.interior(((hx - t) * 0.85, (hy - t) * 0.85), floor_z=floor, rim_z=h)
         return Traits((color,), material, "cuboid")
     r = d.uniform(0.03, 0.048) if kind != "flared" else d.uniform(0.025, 0.035)
@@ -464,8 +449,8 @@ def vase(d: Design) -> Traits:
         body, opening = (h - floor) * d.uniform(0.55, 0.7), d.uniform(0.012, 0.02)
         d.wall("body", r, t, body, floor, material, color, segments=20)
         shoulder = (opening + r + t) / 2
-        flat_ring(
-            d, "shoulder", shoulder, r + t - opening, t, floor + body, material, color, segments=20
+        d.flat_ring(
+            "shoulder", shoulder, r + t - opening, t, floor + body, material, color, segments=20
         )
         neck_z = floor + body + t
         d.wall("neck", opening, t, h - neck_z, neck_z, material, color, segments=14)

@@ -5,55 +5,11 @@ from __future__ import annotations
 import math
 
 from ..design import Design, Traits
-from ..parts import axis_angle_quat, quat_mul
+from ..parts import axis_angle_quat
 from .kitchen import CERAMIC_COLORS
 from .registry import generator
 
-Vec = tuple[float, float, float]
 GRIPS = ["black", "red", "green", "blue", "yellow", "orange", "white", "brown"]
-
-
-def segment(d: Design, name: str, shape: str, p0: Vec, p1: Vec, cross, material, color, **kw):
-    """A box, cylinder, capsule or ellipsoid from ``p0`` to ``p1``; ``cross`` is its section:
-    the radius of a cylinder or capsule, (half width, half height) of a box or ellipsoid."""
-    dx, dy, dz = (b - a for a, b in zip(p0, p1, strict=True))
-    length = math.sqrt(dx * dx + dy * dy + dz * dz)
-    quat = quat_mul(
-        axis_angle_quat((0, 0, 1), math.atan2(dy, dx)),
-        axis_angle_quat((0, 1, 0), -math.atan2(dz, math.hypot(dx, dy))),
-    )
-    if shape in ("box", "ellipsoid"):
-        size = (length / 2, *cross)
-    else:
-        size = (cross, max(length / 2 - (cross if shape == "capsule" else 0.0), 1e-4))
-    center = tuple((a + b) / 2 for a, b in zip(p0, p1, strict=True))
-    d.add(name, shape, size, center, material, color, quat=quat, **kw)
-
-
-def open_box(d: Design, name: str, half, height, thick, material, color, z0=0.0, **kw) -> float:
-    """A rectangular container (floor and four walls) standing on ``z0``; returns the floor top."""
-    hx, hy = half
-    d.box(f"{name}_floor", (hx, hy, thick / 2), (0, 0, z0 + thick / 2), material, color, **kw)
-    wz = z0 + thick + (height - thick) / 2
-    wh = (height - thick) / 2
-    for k, sign in enumerate((-1, 1)):
-        d.box(
-            f"{name}_wall_y{k}",
-            (hx, thick / 2, wh),
-            (0, sign * (hy - thick / 2), wz),
-            material,
-            color,
-            **kw,
-        )
-        d.box(
-            f"{name}_wall_x{k}",
-            (thick / 2, hy - thick, wh),
-            (sign * (hx - thick / 2), 0, wz),
-            material,
-            color,
-            **kw,
-        )
-    return z0 + thick
 
 
 def _grip(d: Design, length: float, half_w: float, thick: float, x1: float) -> tuple[str, str]:
@@ -110,8 +66,7 @@ def peeler(d: Design) -> Traits:
     if d.rng.random() < 0.5:  # a Y peeler: two arms and a blade across their tips
         reach, half = d.uniform(0.035, 0.045), d.uniform(0.025, 0.032)
         for k, sign in enumerate((-1, 1)):
-            segment(
-                d,
+            d.segment(
                 f"arm_{k}",
                 "box",
                 (0, 0, thick / 2),
@@ -163,10 +118,10 @@ def garlic_press(d: Design) -> Traits:
     for k, sign in enumerate((-1, 1)):
         side = (0.0, sign * (rc + 0.009), z)
         end = (xh - length, sign * d.uniform(0.02, 0.03), z)
-        segment(d, f"fork_{k}", "box", (xh, sign * 0.004, z), side, (0.006, z), "aluminium", metal)
-        segment(d, f"arm_{k}", "box", side, end, (0.006, z - 0.0015), "aluminium", metal)
+        d.segment(f"fork_{k}", "box", (xh, sign * 0.004, z), side, (0.006, z), "aluminium", metal)
+        d.segment(f"arm_{k}", "box", side, end, (0.006, z - 0.0015), "aluminium", metal)
         grip_start = tuple(a + 0.4 * (b - a) for a, b in zip(side, end, strict=True))
-        segment(d, f"grip_{k}", "capsule", grip_start, end, z, "rubber", grip)
+        d.segment(f"grip_{k}", "capsule", grip_start, end, z, "rubber", grip)
     d.upright("hinge", 0.006, thick + 0.004, 0.0, "aluminium", metal, xy=(xh, 0))
     colors = (metal,) if grip == metal else (metal, grip)
     return Traits(colors, "aluminium", "irregular")
@@ -183,13 +138,12 @@ def wire_cutters(d: Design) -> Traits:
     pivot = length / 2 - jaw
     for k, sign in enumerate((-1, 1)):
         end = (-length / 2, sign * spread / 2, z)
-        segment(
-            d, f"arm_{k}", "box", (pivot, 0, z), end, (0.0045, thick / 2 - 0.002), "metal", "silver"
+        d.segment(
+            f"arm_{k}", "box", (pivot, 0, z), end, (0.0045, thick / 2 - 0.002), "metal", "silver"
         )
         start = (pivot - 0.02, sign * 0.006, z)
-        segment(d, f"grip_{k}", "capsule", start, end, thick / 2, "rubber", grip)
-        segment(
-            d,
+        d.segment(f"grip_{k}", "capsule", start, end, thick / 2, "rubber", grip)
+        d.segment(
             f"jaw_{k}",
             "box",
             (pivot, sign * 0.006, z),
@@ -289,7 +243,7 @@ def tray(d: Design) -> Traits:
     hx, hy = d.uniform(0.15, 0.22), d.uniform(0.1, 0.15)
     rim = d.uniform(0.02, 0.035)
     kw = dict(solid_fraction=0.2 if material == "metal" else 1.0)
-    floor = open_box(d, "tray", (hx, hy), rim, 0.006, material, color, **kw)
+    floor = d.open_box("tray", (hx, hy), rim, 0.006, material, color, full="y", **kw)
     handle = d.choice(["black", color])
     for k, sign in enumerate((-1, 1)):
         d.box(

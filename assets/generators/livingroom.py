@@ -6,7 +6,6 @@ import math
 
 from ..design import Design, Traits
 from ..parts import X_TO_Z, axis_angle_quat
-from .kitchenware import segment
 from .registry import generator
 
 
@@ -45,7 +44,7 @@ def _leaves(d: Design, z: float, radius: float, blades: bool) -> None:
         base = (radius * 0.3 * math.cos(a), radius * 0.3 * math.sin(a), z)
         tip = (reach * math.cos(a), reach * math.sin(a), z + length * math.cos(lean))
         shape = "box" if blades else "ellipsoid"
-        segment(d, f"leaf_{k}", shape, base, tip, cross, "organic", "green")
+        d.segment(f"leaf_{k}", shape, base, tip, cross, "organic", "green")
 
 
 @generator(
@@ -102,35 +101,22 @@ def watering_can(d: Design) -> Traits:
     )
     fill = 0.1 if material == "plastic" else 0.02
     w, core, h = d.uniform(0.06, 0.074), d.uniform(0.03, 0.06), d.uniform(0.1, 0.15)
-    d.box("body", (core, w / 2, h / 2), (0, 0, h / 2), material, color, solid_fraction=fill)
-    for k, sign in enumerate((-1, 1)):
-        d.upright(
-            f"body_end_{k}",
-            w / 2,
-            h,
-            0.0,
-            material,
-            color,
-            xy=(sign * core, 0),
-            solid_fraction=fill,
-        )
+    d.stadium("body", core, w / 2, 0.0, h, material, color, solid_fraction=fill)
     d.upright("opening", w * 0.3, 0.004, h, material, "black", xy=(-core * 0.6, 0))
     front = core + w / 2
     elev, length = d.uniform(0.6, 0.9), d.uniform(0.12, 0.18)
     root = (front - 0.01, 0, h * 0.2)
     tip = (root[0] + length * math.cos(elev), 0, root[2] + length * math.sin(elev))
-    segment(d, "spout", "cylinder", root, tip, d.uniform(0.007, 0.009), material, color)
+    d.segment("spout", "cylinder", root, tip, d.uniform(0.007, 0.009), material, color)
     rose = (tip[0] + 0.02 * math.cos(elev), 0, tip[2] + 0.02 * math.sin(elev))
     rose_color = d.choice([color, "black", "silver"])
-    segment(d, "rose", "cylinder", tip, rose, 0.016, material, rose_color)
+    d.segment("rose", "cylinder", tip, rose, 0.016, material, rose_color)
     top = h + d.uniform(0.035, 0.05)
     bar = (core * 0.5, 0, top)
     back = (-front - 0.02, 0, top - 0.01)
-    segment(d, "handle", "capsule", bar, back, 0.007, material, color)
-    segment(d, "handle_post", "capsule", (core * 0.5, 0, h - 0.005), bar, 0.007, material, color)
-    segment(
-        d, "handle_back", "capsule", back, (-front + 0.005, 0, h * 0.45), 0.007, material, color
-    )
+    d.segment("handle", "capsule", bar, back, 0.007, material, color)
+    d.segment("handle_post", "capsule", (core * 0.5, 0, h - 0.005), bar, 0.007, material, color)
+    d.segment("handle_back", "capsule", back, (-front + 0.005, 0, h * 0.45), 0.007, material, color)
     colors = (color,) if rose_color == color else (color, rose_color)
     return Traits(colors, material, "irregular")
 
@@ -170,7 +156,7 @@ def diffuser_bottle(d: Design) -> Traits:
         side = d.uniform(-0.025, 0.025)
         base = (0.0, 0.0, h - 0.03)
         tip = (length * math.sin(lean), side, h - 0.03 + length * math.cos(lean))
-        segment(d, f"reed_{k}", "cylinder", base, tip, 0.0018, "wood", reed)
+        d.segment(f"reed_{k}", "cylinder", base, tip, 0.0018, "wood", reed)
     return Traits((glass, reed), "glass", shape)
 
 
@@ -255,7 +241,7 @@ def photo_frame(d: Design) -> Traits:
     foot_x = attach[0] - hh * 0.25 - 0.01
     pitch = math.atan2(attach[2] - floor, attach[0] - foot_x)
     foot = (foot_x, 0.0, floor + 0.0015 * math.cos(pitch))
-    segment(d, "leg", "box", attach, foot, (d.uniform(0.008, 0.012), 0.0015), "paper", "black")
+    d.segment("leg", "box", attach, foot, (d.uniform(0.008, 0.012), 0.0015), "paper", "black")
     return Traits((color,), material, "flat")
 
 
@@ -296,8 +282,7 @@ def candle_holder(d: Design) -> Traits:
         row, col = divmod(k, 8)
         a, zk = (col + 0.5 * row) * math.pi / 4, z + base + (h - base) * (0.35 + 0.3 * row)
         out = (math.cos(a), math.sin(a))
-        segment(
-            d,
+        d.segment(
             f"hole_{k}",
             "cylinder",
             (out[0] * (r - 0.001), out[1] * (r - 0.001), zk),

@@ -11,45 +11,12 @@ from .registry import generator
 PLASTICS = ["red", "blue", "green", "yellow", "white", "gray", "black", "pink", "orange"]
 
 
-def _frame(
-    d: Design,
-    name: str,
-    hx: float,
-    hy: float,
-    width: float,
-    z0: float,
-    height: float,
-    material: str,
-    color: str,
-    **kw,
-) -> None:
-    """Four boxes along the edges of a rectangle (outer half extents hx, hy) from z0 up."""
-    zc = z0 + height / 2
-    for k, s in enumerate((-1, 1)):
-        d.box(
-            f"{name}_x{k}",
-            (width / 2, hy, height / 2),
-            (s * (hx - width / 2), 0, zc),
-            material,
-            color,
-            **kw,
-        )
-        d.box(
-            f"{name}_y{k}",
-            (hx - width, width / 2, height / 2),
-            (0, s * (hy - width / 2), zc),
-            material,
-            color,
-            **kw,
-        )
-
-
 def _tray(
     d: Design, hx: float, hy: float, h: float, t: float, material: str, color: str, **kw
 ) -> None:
     """An open rectangular container: a floor and four walls, all ``t`` thick."""
     d.box("floor", (hx, hy, t / 2), (0, 0, t / 2), material, color, **kw)
-    _frame(d, "wall", hx, hy, t, t, h - t, material, color, **kw)
+    d.frame("wall", (hx, hy), t, t, h - t, material, color, **kw)
 
 
 def _vessel(
@@ -147,11 +114,9 @@ def basket(d: Design) -> Traits:
         hx, hy = d.uniform(0.1, 0.135), d.uniform(0.07, 0.1)
         _tray(d, hx, hy, h, t, material, color)
         for k in range(int(h / 0.03)):
-            _frame(
-                d,
+            d.frame(
                 f"weave_{k}",
-                hx + 0.001,
-                hy + 0.001,
+                (hx + 0.001, hy + 0.001),
                 t + 0.002,
                 0.02 + k * 0.03,
                 0.008,
@@ -159,7 +124,7 @@ def basket(d: Design) -> Traits:
                 weave,
                 visual_only=True,
             )
-        _frame(d, "rim", hx + 0.002, hy + 0.002, t + 0.004, h - 0.008, 0.01, material, weave)
+        d.frame("rim", (hx + 0.002, hy + 0.002), t + 0.004, h - 0.008, 0.01, material, weave)
         d.interior((hx - t - 0.004, hy - t - 0.004), floor_z=t, rim_z=h)
         x_handle, shape = hx, "cuboid"
     else:
@@ -195,7 +160,7 @@ def waste_bin(d: Design) -> Traits:
     else:
         hx, hy = d.uniform(0.09, 0.11), d.uniform(0.075, 0.1)
         _tray(d, hx, hy, h, t, material, color)
-        _frame(d, "rim", hx + 0.002, hy + 0.002, t + 0.004, h - 0.018, 0.02, material, rim)
+        d.frame("rim", (hx + 0.002, hy + 0.002), t + 0.004, h - 0.018, 0.02, material, rim)
         d.interior((hx - 0.01, hy - 0.01), floor_z=t, rim_z=h)
         shape = "cuboid"
     return Traits(tuple(dict.fromkeys((color, rim))), material, shape)
@@ -334,7 +299,7 @@ def baking_tray(d: Design) -> Traits:
     color = d.choice(["silver", "silver", "black", "gray"])
     hx, hy, h, t = d.uniform(0.13, 0.165), d.uniform(0.09, 0.115), d.uniform(0.016, 0.025), 0.002
     _tray(d, hx, hy, h, t, "aluminium", color)
-    _frame(d, "rolled_rim", hx + 0.002, hy + 0.002, 0.007, h - 0.005, 0.005, "aluminium", color)
+    d.frame("rolled_rim", (hx + 0.002, hy + 0.002), 0.007, h - 0.005, 0.005, "aluminium", color)
     colors: tuple[str, ...] = (color,)
     if d.rng.random() < 0.4:
         paper = d.choice(["white", "beige"])
@@ -361,7 +326,7 @@ def _lipped_slab(
         d.interior((hx * 0.65, hx * 0.65), floor_z=thick, rim_z=thick + 0.0025)
     else:
         d.box("slab", (hx, hy, thick / 2), (0, 0, thick / 2), material, color)
-        _frame(d, "lip", hx, hy, 0.008, thick, 0.0025, material, lip)
+        d.frame("lip", (hx, hy), 0.008, thick, 0.0025, material, lip)
         d.interior((hx - 0.012, hy - 0.012), floor_z=thick, rim_z=thick + 0.0025)
 
 

@@ -10,65 +10,6 @@ from .desktop import BRIGHT
 from .registry import generator
 
 
-def slab(d: Design, name: str, half, z0: float, material: str, color: str, xy=(0.0, 0.0), **kw):
-    """A box standing on z = z0, centred at ``xy``."""
-    d.box(name, half, (xy[0], xy[1], z0 + half[2]), material, color, **kw)
-
-
-def flat_ring(
-    d: Design,
-    name: str,
-    radius: float,
-    width: float,
-    thick: float,
-    z0: float,
-    material: str,
-    color: str,
-    center=(0.0, 0.0),
-    segments: int = 12,
-    **kw,
-):
-    """A ring of boxes lying flat on z = z0 (a scissor loop, a vase shoulder)."""
-    chord = 2 * (radius + width / 2) * math.tan(math.pi / segments) * 1.02
-    for k in range(segments):
-        a = 2 * math.pi * k / segments
-        pos = (center[0] + radius * math.cos(a), center[1] + radius * math.sin(a), z0 + thick / 2)
-        d.box(f"{name}_{k}", (width / 2, chord / 2, thick / 2), pos, material, color, yaw=a, **kw)
-
-
-def open_box(d: Design, name: str, hx: float, hy: float, h: float, t: float, floor: float, *look):
-    """A rectangular container (floor and four walls) standing on z = 0; ``look``: material,
-    colour."""
-    slab(d, f"{name}_floor", (hx, hy, floor / 2), 0.0, *look)
-    wall_h = (h - floor) / 2
-    for sign in (-1, 1):
-        slab(
-            d,
-            f"{name}_wall_x{sign}",
-            (t / 2, hy, wall_h),
-            floor,
-            *look,
-            xy=(sign * (hx - t / 2), 0),
-        )
-        slab(
-            d,
-            f"{name}_wall_y{sign}",
-            (hx - t, t / 2, wall_h),
-            floor,
-            *look,
-            xy=(0, sign * (hy - t / 2)),
-        )
-
-
-def hex_rod(d: Design, name: str, apothem: float, length: float, center, material: str, color: str):
-    """A hexagonal prism along x with a flat face down (three overlapping boxes, mass exact)."""
-    side = 2 * apothem / math.sqrt(3)
-    for k in range(3):
-        quat = axis_angle_quat((1, 0, 0), k * math.pi / 3)
-        half = (length / 2, side / 2, apothem)
-        d.add(f"{name}_{k}", "box", half, center, material, color, quat=quat, solid_fraction=0.5)
-
-
 @generator("stapler", size=(0.12, 0.2))
 def stapler(d: Design) -> Traits:
     body = d.choice(["black", "red", "blue", "gray", "silver", "green"])
@@ -76,19 +17,19 @@ def stapler(d: Design) -> Traits:
     material = "metal" if body == "silver" else "plastic"
     lx, w = d.uniform(0.13, 0.18), d.uniform(0.032, 0.042)
     base_t, arm_z, arm_t = 0.006, d.uniform(0.022, 0.028), d.uniform(0.014, 0.019)
-    slab(d, "base", (lx / 2, w / 2, base_t / 2), 0.0, "metal", base, solid_fraction=0.35)
+    d.slab("base", (lx / 2, w / 2, base_t / 2), 0.0, "metal", base, solid_fraction=0.35)
     anvil = (lx / 2 - 0.016, 0, base_t + 0.0004)
     d.box("anvil", (0.008, w * 0.25, 0.0004), anvil, "metal", "silver", visual_only=True)
     hinge = (lx * 0.07, w * 0.4, (arm_z - base_t) / 2)
-    slab(d, "hinge", hinge, base_t, "metal", base, xy=(-lx / 2 + hinge[0], 0), solid_fraction=0.35)
+    d.slab("hinge", hinge, base_t, "metal", base, xy=(-lx / 2 + hinge[0], 0), solid_fraction=0.35)
     arm_l = lx * d.uniform(0.94, 0.99)
     arm_x, fill = -lx / 2 + arm_l / 2, 0.12 if material == "metal" else 0.45
     arm = (arm_l / 2, w * 0.42, arm_t / 2)
-    slab(d, "arm", arm, arm_z, material, body, xy=(arm_x, 0), solid_fraction=fill)
+    d.slab("arm", arm, arm_z, material, body, xy=(arm_x, 0), solid_fraction=fill)
     cover = (arm_l / 2, w * 0.42, arm_t * 0.4)
     d.ellipsoid("cover", cover, (arm_x, 0, arm_z + arm_t), material, body, visual_only=True)
     nose = (0.007, w * 0.36, 0.003)
-    slab(d, "nose", nose, arm_z - 0.006, "metal", "silver", xy=(arm_x + arm_l / 2 - 0.007, 0))
+    d.slab("nose", nose, arm_z - 0.006, "metal", "silver", xy=(arm_x + arm_l / 2 - 0.007, 0))
     return Traits((body, base), material, "elongated")
 
 
@@ -103,10 +44,10 @@ def ballpoint_pen(d: Design) -> Traits:
         barrel = length - cap - 0.004
         x0 = -length / 2
         d.rod("plug", a * 0.8, 0.004, (x0 + 0.002, 0, a), "plastic", ink)
-        hex_rod(d, "barrel", a, barrel, (x0 + 0.004 + barrel / 2, 0, a), "plastic", body)
+        d.hex_rod("barrel", a, barrel, (x0 + 0.004 + barrel / 2, 0, a), "plastic", body)
         refill = (x0 + 0.004 + barrel / 2, 0, a)
         d.rod("refill", a * 0.3, barrel, refill, "plastic", ink, visual_only=True)
-        hex_rod(d, "cap", a + 0.0007, cap, (length / 2 - cap / 2, 0, a + 0.0007), "plastic", ink)
+        d.hex_rod("cap", a + 0.0007, cap, (length / 2 - cap / 2, 0, a + 0.0007), "plastic", ink)
         clip = (length / 2 - cap / 2 - 0.002, 0, 2 * a + 0.0026)
         d.box("clip", (cap * 0.4, 0.0016, 0.0012), clip, "plastic", ink)
         return Traits((body, ink), "plastic", "elongated")
@@ -152,7 +93,7 @@ def pen_holder(d: Design) -> Traits:
         d.interior((r * 0.68, r * 0.68), floor_z=floor, rim_z=h)
         return Traits((color,), material, "cylinder")
     hx, hy = d.uniform(0.032, 0.042), d.uniform(0.032, 0.042)
-    open_box(d, "cup", hx, hy, h, t, floor, material, color)
+    d.open_box("cup", (hx, hy), h, t, material, color, floor=floor, tags=(-1, 1))
     d.interior(((hx - t) * 0.85, (hy - t) * 0.85), floor_z=floor, rim_z=h)
     return Traits((color,), material, "cuboid")
 
@@ -179,8 +120,7 @@ def correction_tape(d: Design) -> Traits:
     R, hz = d.uniform(0.016, 0.021), d.uniform(0.014, 0.019)
     front = d.uniform(0.03, 0.045)
     d.upright("reel_case", R, hz, 0.0, "plastic", color, solid_fraction=0.5)
-    slab(
-        d,
+    d.slab(
         "body",
         (front / 2, R * 0.72, hz / 2),
         0.0,
@@ -190,11 +130,10 @@ def correction_tape(d: Design) -> Traits:
         solid_fraction=0.5,
     )
     nose = 0.012
-    slab(
-        d, "nose", (nose / 2, 0.005, hz * 0.3), hz * 0.2, "plastic", color, xy=(front + nose / 2, 0)
+    d.slab(
+        "nose", (nose / 2, 0.005, hz * 0.3), hz * 0.2, "plastic", color, xy=(front + nose / 2, 0)
     )
-    slab(
-        d,
+    d.slab(
         "tip",
         (0.0015, 0.0065, hz * 0.2),
         hz * 0.3,
@@ -218,14 +157,13 @@ def sharpener(d: Design) -> Traits:
     if d.rng.random() < 0.5:  # a small aluminium block
         color = d.choice(["silver", "red", "blue", "green", "golden"])
         lx, ly, lz = d.uniform(0.022, 0.03), d.uniform(0.014, 0.018), d.uniform(0.01, 0.013)
-        slab(d, "block", (lx / 2, ly / 2, lz / 2), 0.0, "aluminium", color)
+        d.slab("block", (lx / 2, ly / 2, lz / 2), 0.0, "aluminium", color)
         colors, material, z_hole, top = (color,), "aluminium", lz / 2, lz
     else:  # a plastic head over a clear shavings canister
         color = d.choice(BRIGHT)
         lx, ly = d.uniform(0.035, 0.06), d.uniform(0.022, 0.032)
         can, head = d.uniform(0.012, 0.02), d.uniform(0.014, 0.018)
-        slab(
-            d,
+        d.slab(
             "canister",
             (lx / 2, ly / 2, can / 2),
             0.0,
@@ -233,7 +171,7 @@ def sharpener(d: Design) -> Traits:
             "transparent",
             solid_fraction=0.25,
         )
-        slab(d, "head", (lx / 2, ly / 2, head / 2), can, "plastic", color, solid_fraction=0.6)
+        d.slab("head", (lx / 2, ly / 2, head / 2), can, "plastic", color, solid_fraction=0.6)
         colors, material, z_hole, top = (
             (color, "transparent"),
             "plastic",
@@ -259,10 +197,10 @@ def notebook(d: Design) -> Traits:
     lx, ly = d.choice([(0.21, 0.148), (0.148, 0.105), (0.25, 0.176), (0.18, 0.13)])
     scale = d.uniform(0.97, 1.03)
     lx, ly, pages, skin = lx * scale, ly * scale, d.uniform(0.006, 0.016), 0.0012
-    slab(d, "back_cover", (lx / 2, ly / 2, skin / 2), 0.0, "paper", cover)
-    slab(d, "pages", (lx / 2 - 0.003, ly / 2 - 0.003, pages / 2), skin, "paper", "white")
+    d.slab("back_cover", (lx / 2, ly / 2, skin / 2), 0.0, "paper", cover)
+    d.slab("pages", (lx / 2 - 0.003, ly / 2 - 0.003, pages / 2), skin, "paper", "white")
     top = 2 * skin + pages
-    slab(d, "front_cover", (lx / 2, ly / 2, skin / 2), skin + pages, "paper", cover)
+    d.slab("front_cover", (lx / 2, ly / 2, skin / 2), skin + pages, "paper", cover)
     edge = ly / 2 - 0.006
     if d.rng.random() < 0.5:
         n, rc = int(lx / 0.009), top / 2 + 0.003
@@ -308,8 +246,7 @@ def scissors(d: Design) -> Traits:
         dist = math.hypot(dx, dy)
         f = (dist - ring) / (2 * dist)
         mid = (end[0] + dx * f, end[1] + dy * f)
-        slab(
-            d,
+        d.slab(
             f"bridge_{k}",
             (dist * f, 0.0035, thick * 0.4),
             0.0,
@@ -318,8 +255,7 @@ def scissors(d: Design) -> Traits:
             xy=mid,
             yaw=math.atan2(dy, dx),
         )
-        flat_ring(
-            d,
+        d.flat_ring(
             f"loop_{k}",
             ring + band / 2,
             band,
@@ -351,17 +287,17 @@ def scotch_tape(d: Design) -> Traits:
     body = d.choice(["black", "gray", "blue", "red", "pink"])
     R, lx, base_t = rc + 0.0015 + wound, d.uniform(0.1, 0.14), d.uniform(0.012, 0.018)
     ly = width + 0.012
-    slab(d, "base", (lx / 2, ly / 2, base_t / 2), 0.0, "plastic", body)
+    d.slab("base", (lx / 2, ly / 2, base_t / 2), 0.0, "plastic", body)
     roll_x, roll_z = -lx / 2 + R + 0.006, base_t + R + 0.001
     for sign in (-1, 1):
         cheek = (R * 0.8, 0.003, R / 2)
-        slab(
-            d, f"cheek_{sign}", cheek, base_t, "plastic", body, xy=(roll_x, sign * (ly / 2 - 0.003))
+        d.slab(
+            f"cheek_{sign}", cheek, base_t, "plastic", body, xy=(roll_x, sign * (ly / 2 - 0.003))
         )
     d.rod("roll", R, width, (roll_x, 0, roll_z), "plastic", tape, axis="y")
     d.rod("core", rc, width + 0.001, (roll_x, 0, roll_z), "paper", core, axis="y", visual_only=True)
     nose_x, nose_h = lx / 2 - 0.015, R * 1.2
-    slab(d, "nose", (0.015, ly / 2, nose_h / 2), base_t, "plastic", body, xy=(nose_x, 0))
+    d.slab("nose", (0.015, ly / 2, nose_h / 2), base_t, "plastic", body, xy=(nose_x, 0))
     cutter = (lx / 2 - 0.002, 0, base_t + nose_h + 0.002)
     d.box("cutter", (0.002, width / 2 + 0.002, 0.002), cutter, "metal", "silver")
     run = cutter[0] - roll_x
@@ -391,7 +327,7 @@ def magnifier(d: Design) -> Traits:
     d.wall("rim", rl, t, hr, 0.0, rim_mat, rim, segments=20)
     d.upright("lens", rl + 0.0005, 0.004, hr / 2 - 0.002, "glass", "transparent")
     neck = 0.012
-    slab(d, "neck", (neck / 2, 0.005, hr / 2), 0.0, rim_mat, rim, xy=(rl + t + neck / 2, 0))
+    d.slab("neck", (neck / 2, 0.005, hr / 2), 0.0, rim_mat, rim, xy=(rl + t + neck / 2, 0))
     length = d.uniform(0.08, 0.12)
     x0 = rl + t + neck
     d.rod("ferrule", rh + 0.0008, 0.008, (x0 + 0.004, 0, rh), "metal", rim)
@@ -415,7 +351,7 @@ def cutter_knife(d: Design) -> Traits:
     color = d.choice(["yellow", "orange", "blue", "black", "red", "green"])
     grip = "gray" if color == "black" else "black"
     lx, w, t = d.uniform(0.125, 0.16), d.uniform(0.017, 0.025), d.uniform(0.011, 0.015)
-    slab(d, "body", (lx / 2, w / 2, t / 2), 0.0, "plastic", color, solid_fraction=0.7)
+    d.slab("body", (lx / 2, w / 2, t / 2), 0.0, "plastic", color, solid_fraction=0.7)
     grip_half = (lx * 0.2, w / 2 + 0.0004, t / 2 + 0.0004)
     d.box("grip", grip_half, (-lx * 0.22, 0, t / 2), "rubber", grip, visual_only=True)
     d.box(
@@ -426,9 +362,7 @@ def cutter_knife(d: Design) -> Traits:
         "silver",
         visual_only=True,
     )
-    slab(
-        d, "slider", (0.007, w * 0.3, 0.0015), t, "plastic", grip, xy=(lx * d.uniform(0.1, 0.3), 0)
-    )
+    d.slab("slider", (0.007, w * 0.3, 0.0015), t, "plastic", grip, xy=(lx * d.uniform(0.1, 0.3), 0))
     ext = d.uniform(0.01, 0.025)
     d.box("blade", (ext / 2, w * 0.3, 0.0004), (lx / 2 + ext / 2, 0, t / 2), "metal", "silver")
     tip = (lx / 2 + ext, w * 0.05, t / 2)
@@ -444,8 +378,8 @@ def stamp(d: Design) -> Traits:
         knob = d.choice([wood, "black", "red"])
         lx, ly = d.uniform(0.03, 0.05), d.uniform(0.025, 0.04)
         block, neck = d.uniform(0.012, 0.018), d.uniform(0.025, 0.035)
-        slab(d, "pad", (lx / 2 - 0.002, ly / 2 - 0.002, 0.002), 0.0, "rubber", ink)
-        slab(d, "block", (lx / 2, ly / 2, block / 2), 0.004, "wood", wood)
+        d.slab("pad", (lx / 2 - 0.002, ly / 2 - 0.002, 0.002), 0.0, "rubber", ink)
+        d.slab("block", (lx / 2, ly / 2, block / 2), 0.004, "wood", wood)
         d.upright("neck", 0.007, neck, 0.004 + block, "wood", knob)
         kr = d.uniform(0.012, 0.016)
         d.ellipsoid(
@@ -454,9 +388,8 @@ def stamp(d: Design) -> Traits:
         return Traits((wood, knob), "wood", "T-shape")
     color = d.choice(["black", "blue", "red", "gray"])
     lx, ly, h = d.uniform(0.04, 0.06), d.uniform(0.025, 0.035), d.uniform(0.045, 0.06)
-    slab(d, "pad", (lx / 2, ly / 2, 0.004), 0.0, "plastic", "black")
-    slab(
-        d,
+    d.slab("pad", (lx / 2, ly / 2, 0.004), 0.0, "plastic", "black")
+    d.slab(
         "body",
         (lx / 2 - 0.002, ly / 2 - 0.002, h * 0.3),
         0.008,
@@ -464,8 +397,7 @@ def stamp(d: Design) -> Traits:
         color,
         solid_fraction=0.5,
     )
-    slab(
-        d,
+    d.slab(
         "handle",
         (lx / 2 + 0.003, ly / 2, h * 0.12),
         0.008 + h * 0.6,
@@ -485,8 +417,7 @@ def staples_box(d: Design) -> Traits:
     lx, ly, h = d.uniform(0.05, 0.08), d.uniform(0.02, 0.035), d.uniform(0.012, 0.022)
     clear = d.rng.random() < 0.4
     body = "transparent" if clear else color
-    slab(
-        d,
+    d.slab(
         "box",
         (lx / 2, ly / 2, h * 0.35),
         0.0,
@@ -494,8 +425,7 @@ def staples_box(d: Design) -> Traits:
         body,
         solid_fraction=0.6,
     )
-    slab(
-        d,
+    d.slab(
         "lid",
         (lx / 2 + 0.0008, ly / 2 + 0.0008, h * 0.15),
         h * 0.7,
@@ -530,11 +460,11 @@ def sticky_notes(d: Design) -> Traits:
     second = d.choice([c for c in notes if c != first]) if d.rng.random() < 0.35 else first
     side = d.uniform(0.05, 0.068)
     lx, thick = side * d.choice([1.0, 1.0, 1.3]), d.uniform(0.008, 0.018)
-    slab(d, "pad", (lx / 2, side / 2, thick / 2), 0.0, "paper", first)
+    d.slab("pad", (lx / 2, side / 2, thick / 2), 0.0, "paper", first)
     layers = d.choice([2, 3, 4])
     for k in range(1, layers, 2):  # every other layer of a two-colour pad
         band = (lx / 2 + 0.0002, side / 2 + 0.0002, thick / layers / 2)
-        slab(d, f"layer_{k}", band, k * thick / layers, "paper", second, visual_only=True)
+        d.slab(f"layer_{k}", band, k * thick / layers, "paper", second, visual_only=True)
     top = (lx / 2 - 0.004, side / 2 - 0.004, 0.0002)
     d.box(
         "top_sheet",

@@ -5,23 +5,9 @@ from __future__ import annotations
 import math
 
 from ..design import Design, Traits
-from ..parts import axis_angle_quat, quat_mul
-from .bathroom import Point, strut
 from .registry import generator
 
 GRIPS = ["red", "blue", "yellow", "black", "orange", "green"]
-
-
-def _hex_rod(
-    d: Design, name: str, apothem: float, length: float, center: Point, yaw: float, color: str
-) -> None:
-    """A steel rod of hexagonal section lying on a flat: three overlapping boxes (half mass)."""
-    for k in range(3):
-        quat = quat_mul(
-            axis_angle_quat((0, 0, 1), yaw), axis_angle_quat((1, 0, 0), k * math.pi / 3)
-        )
-        half = (length / 2, apothem / math.sqrt(3), apothem)
-        d.add(f"{name}_{k}", "box", half, center, "metal", color, quat=quat, solid_fraction=0.5)
 
 
 @generator("hex_key", size=(0.08, 0.16), synonyms=("hex key", "allen key", "allen wrench"))
@@ -30,16 +16,9 @@ def hex_key(d: Design) -> Traits:
     a = d.uniform(0.004, 0.005)
     long_arm, short_arm = d.uniform(0.085, 0.14), a * d.uniform(6, 8)
     vertex = 2 * a / math.sqrt(3)
-    _hex_rod(d, "long_arm", a, long_arm, (0, 0, a), 0.0, color)
-    _hex_rod(
-        d,
-        "short_arm",
-        a,
-        short_arm,
-        (long_arm / 2 - vertex, short_arm / 2 - vertex, a),
-        math.pi / 2,
-        color,
-    )
+    d.hex_rod("long_arm", a, long_arm, (0, 0, a), "metal", color)
+    short_center = (long_arm / 2 - vertex, short_arm / 2 - vertex, a)
+    d.hex_rod("short_arm", a, short_arm, short_center, "metal", color, yaw=math.pi / 2)
     if d.choice([True, False]):
         d.sphere("ball_end", a * 0.98, (-long_arm / 2 - a * 0.5, 0, a), "metal", color)
     return Traits((color,), "metal", "L-shape")
@@ -95,18 +74,18 @@ def pliers(d: Design) -> Traits:
     d.upright("rivet", 0.0045, t + 0.0015, 0.0, "metal", "silver")
     r = t / 2 + 0.0015
     for k, s in enumerate((-1, 1)):
-        strut(
-            d,
+        d.segment(
             f"jaw_{k}",
+            "box",
             (0.008, s * jaw_w, t / 2),
             (jaw, s * jaw_w * 0.4, t / 2),
             (jaw_w, t / 2),
             "metal",
             steel,
         )
-        strut(
-            d,
+        d.segment(
             f"arm_{k}",
+            "box",
             (-0.008, s * 0.006, t / 2),
             (-handle, s * spread, t / 2),
             (0.0035, t * 0.4),
@@ -115,15 +94,14 @@ def pliers(d: Design) -> Traits:
         )
         f = (handle * 0.3 - 0.008) / (handle - 0.008)
         y0 = 0.006 + (spread - 0.006) * f
-        strut(
-            d,
+        d.segment(
             f"grip_{k}",
+            "capsule",
             (-handle * 0.3, s * y0, r),
             (-handle, s * spread, r),
-            (r,),
+            r,
             "plastic",
             grip,
-            shape="capsule",
         )
     return Traits((grip, steel), "metal", "elongated")
 
@@ -141,9 +119,9 @@ def mini_hammer(d: Design) -> Traits:
     if d.choice([True, False]):
         for k, s in enumerate((-1, 1)):
             z = hh + s * hh * 0.45
-            strut(
-                d,
+            d.segment(
                 f"claw_{k}",
+                "box",
                 (0, -body + 0.002, z),
                 (-0.016, -head * 0.5 + 0.004, z),
                 (0.0045, hh * 0.3),
@@ -205,9 +183,9 @@ def glue_gun(d: Design) -> Traits:
     )
     x_top = -body / 2 + 0.03
     x_butt = x_top - grip_h * math.tan(rake)
-    strut(
-        d,
+    d.segment(
         "grip",
+        "box",
         (x_top, 0, zb + 0.004),
         (x_butt, 0, 0.012),
         (w * 0.45, 0.013),
@@ -216,9 +194,9 @@ def glue_gun(d: Design) -> Traits:
         solid_fraction=0.5,
     )
     d.box("butt", (0.02, w * 0.65, 0.006), (x_butt, 0, 0.006), "plastic", color)
-    strut(
-        d,
+    d.segment(
         "trigger",
+        "box",
         (x_top + 0.022, 0, zb),
         (x_top + 0.018, 0, zb - 0.028),
         (w * 0.22, 0.005),
@@ -227,15 +205,14 @@ def glue_gun(d: Design) -> Traits:
     )
     x_stand = body / 2 - 0.02
     for k, s in enumerate((-1, 1)):
-        strut(
-            d,
+        d.segment(
             f"stand_{k}",
+            "cylinder",
             (x_stand, s * w * 0.35, zb),
             (x_stand + 0.018, s * w * 0.6, 0.002),
-            (0.002,),
+            0.002,
             "metal",
             "silver",
-            shape="cylinder",
         )
     d.rod("stand_foot", 0.002, w * 1.3, (x_stand + 0.018, 0, 0.002), "metal", "silver", axis="y")
     return Traits((color,) if trigger == color else (color, trigger), "plastic", "L-shape")
