@@ -56,3 +56,18 @@ def test_banana_stays_on_the_table():
     for k, entity in enumerate(entities):
         assert np.linalg.norm(np.asarray(entity.pose.p[:2]) - (0.5 * k, 0.0)) < 0.01
         assert entity.pose.p[2] < 0.01, "lying on the table"
+
+
+def test_franka_gripper_picks_up_one_instance_of_every_super_category():
+    from instructmove_ms.assets.grasp_trial import grasp_trial
+
+    catalog = load_snapshot()
+    sample = {}
+    for inst in catalog.instances:
+        if inst.is_graspable:
+            sample.setdefault(inst.super_category, inst)
+    results = grasp_trial(list(sample.values()))
+    assert len(results) >= 15
+    passed = [r for r in results if r.passed]
+    assert len(passed) >= 0.9 * len(results), [r.category for r in results if not r.passed]
+    assert all(r.rise >= 0.08 for r in passed), "a passed trial lifted the object"
