@@ -6,7 +6,7 @@ import hashlib
 import uuid as uuidlib
 from collections.abc import Iterable
 from dataclasses import asdict, dataclass, field
-from functools import cache
+from functools import cache, cached_property
 from importlib import resources
 
 import numpy as np
@@ -73,11 +73,12 @@ class Instance:
     is_container: bool
     interior: Region | None = None  # placement region of a container
 
-    @property
+    @cached_property
     def bounds(self) -> tuple[np.ndarray, np.ndarray]:
+        """(lowest, highest) corner of the instance's box in its frame (do not modify)."""
         return union_bounds(list(self.parts))
 
-    @property
+    @cached_property
     def dims(self) -> tuple[float, float, float]:
         lo, hi = self.bounds
         return tuple(float(v) for v in hi - lo)
