@@ -59,6 +59,9 @@ def _cmd_assets_list(args: argparse.Namespace) -> int:
     return 0
 
 
+TRIAL_TARGET = 0.95
+
+
 def _cmd_assets_check(args: argparse.Namespace) -> int:
     from tqdm import tqdm
 
@@ -75,6 +78,22 @@ def _cmd_assets_check(args: argparse.Namespace) -> int:
                 failed += 1
                 tqdm.write(f"FAIL {result.category} {result.uuid}: {'; '.join(result.failures)}")
     print(f"{len(instances) - failed}/{len(instances)} instances pass the quality checks")
+    if args.trials:
+        from instructmove_ms.assets.grasp_trial import grasp_trial
+
+        results = []
+        for category in tqdm(sorted(by_category), desc="grasp trials", unit="category"):
+            results += grasp_trial(by_category[category])
+        passed = sum(r.passed for r in results)
+        for r in results:
+            if not r.passed:
+                tqdm.write(f"NO GRASP {r.category} {r.uuid} after {r.tries} tries")
+        rate = passed / max(1, len(results))
+        print(
+            f"grasp trials: {passed}/{len(results)} graspable instances picked up ({rate:.1%}; "
+            f"target >= {TRIAL_TARGET:.0%})"
+        )
+        failed += rate < TRIAL_TARGET
     return 1 if failed else 0
 
 
@@ -224,6 +243,12 @@ def build_parser() -> argparse.ArgumentParser:
         p.set_defaults(func=func)
         if name == "list":
             p.add_argument("--format", choices=("table", "jsonl"), default="table")
+        if name == "check":
+            p.add_argument(
+                "--trials",
+                action="store_true",
+                help="also pick every graspable instance up with a floating gripper",
+            )
         if name == "sheet":
             p.add_argument("--out", default="out/sheets", help="folder for the PNGs")
     return parser
