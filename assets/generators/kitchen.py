@@ -5,7 +5,6 @@ from __future__ import annotations
 import math
 
 from ..design import Design, Traits
-from ..parts import axis_angle_quat
 from .registry import generator
 
 CERAMIC_COLORS = ["white", "white", "blue", "red", "green", "yellow", "black", "beige", "pink"]
@@ -58,25 +57,19 @@ def spice_jar(d: Design) -> Traits:
 
 
 def _cutlery_handle(d: Design, colors: list[str], length: tuple[float, float], z: float):
-    """The handle of a spoon or fork along x, its end raised off the table as a real one
-    rests on its head and handle tip; returns (material, colour, head start, head length)."""
+    """The curved handle of a spoon or fork along x: it rises from the head to a hump and
+    comes down to rest its tip on the table, as a real one does; returns (material, colour,
+    head start, head length)."""
     color = d.choice(colors)
     material = "metal" if color == "silver" else "plastic"
     total = d.uniform(*length)
     head = total * 0.3
     handle = total - head
     x0 = -total / 2
-    pitch = d.uniform(0.1, 0.16)
-    rise = math.sin(pitch) * handle / 2
-    d.add(
-        "handle",
-        "box",
-        (handle / 2, 0.006, 0.0018),
-        (x0 + handle / 2, 0, z + rise),
-        material,
-        color,
-        quat=axis_angle_quat((0, 1, 0), pitch),
-    )
+    hump = d.uniform(0.012, 0.018)
+    neck, top, tip = (x0 + handle, 0.0, z), (x0 + handle * 0.45, 0.0, hump), (x0, 0.0, 0.0018)
+    d.segment("handle_front", "box", neck, top, (0.006, 0.0018), material, color)
+    d.segment("handle_back", "box", top, tip, (0.006, 0.0018), material, color)
     return material, color, x0 + handle, head
 
 
