@@ -1,0 +1,151 @@
+"""Episode scores and aggregates: stage metrics, grounding vs control errors, intervals.
+
+Stage flags are latched in the env, so the last step's info of an episode holds its
+result. Aggregates report rates with Wilson 95% intervals and the paper's table format
+``Reach/Lift (S)`` (pick) or ``ReachPick/LiftPick/ReachPlace/Place (S)`` (pick-and-place).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterable
+from dataclasses import asdict, dataclass, field
+
+from .assets.catalog import Catalog
+from .episode import EpisodeSpec
+
+PICK_STAGES = ("reach", "lift")
+PLACE_STAGES = ("reach_pick", "lift_pick", "reach_place", "place")
+SHARED_ATTRIBUTES = ("category", "color", "shape", "material", "size")
+
+
+@dataclass(frozen=True)
+class EpisodeResult:
+    """One scored episode."""
+
+    family: str
+    robot: str
+    split: str
+    condition: str
+    seed: int
+    num_goals: int
+    stages: dict[str, bool]
+    success: bool
+    stage_score: float
+    any_reach: bool
+    any_lift: bool
+    grounding_error: bool  # a distractor was reached or lifted first
+    control_error: bool  # the right object was reached, the task not completed
+    shared: tuple[str, ...] = field(default=())  # attributes a wrong choice shares with target
+
+    def to_dict(self) -> dict:
+        return asdict(self)
+
+
+def _value(info: dict, key: str):
+    value = info[key]
+    return value.reshape(-1)[0].item() if hasattr(value, "reshape") else value
+
+
+def shared_attributes(catalog: Catalog, spec: EpisodeSpec, wrong: int) -> tuple[str, ...]:
+    """Which annotated attributes object ``wrong`` shares with the target."""
+    a, b = catalog[spec.objects[wrong].uuid], catalog[spec.objects[spec.target].uuid]
+    shared = [
+        k for k in ("category", "shape", "material", "size") if getattr(a, k) == getattr(b, k)
+    ]
+    if set(a.colors) & set(b.colors):
+        shared.append("color")
+    return tuple(k for k in SHARED_ATTRIBUTES if k in shared)
+
+
+def score_episode(spec: EpisodeSpec, info: dict, catalog: Catalog) -> EpisodeResult:
+    """Score an episode from the per-step info of its last step."""
+    place = spec.family == "place_a2b"
+    stages = {k: bool(_value(info, k)) for k in (PLACE_STAGES if place else PICK_STAGES)}
+    first = [int(_value(info, k)) for k in ("reached_object", "lifted_object")]
+    wrong = next((k for k in first if k >= 0 and k != spec.target), -1)
+    has_target = spec.target >= 0
+    grounding = has_target and wrong >= 0
+    reached = stages["reach_pick" if place else "reach"]
+    success = bool(_value(info, "success"))
+    return EpisodeResult(
+        family=spec.family,
+        robot=spec.robot,
+        split=spec.split,
+        condition=spec.condition,
+        seed=spec.seed,
+        num_goals=spec.num_goals,
+        stages=stages,
+        success=success,
+        stage_score=float(_value(info, "stage_score")),
+        any_reach=bool(_value(info, "any_reach")),
+        any_lift=bool(_value(info, "any_lift")),
+        grounding_error=grounding,
+        control_error=has_target and reached and not success and not grounding,
+        shared=shared_attributes(catalog, spec, wrong) if grounding else (),
+    )
+
+
+def wilson(successes: int, n: int, z: float = 1.96) -> tuple[float, float]:
+    """Wilson score interval of a binomial rate (95% by default)."""
+    if n == 0:
+        return (0.0, 1.0)
+    p = successes / n
+    denom = 1 + z * z / n
+    centre = (p + z * z / (2 * n)) / denom
+    half = z * math.sqrt(p * (1 - p) / n + z * z / (4 * n * n)) / denom
+    return (max(0.0, centre - half), min(1.0, centre + half))
+
+
+def aggregate(
+    results: Iterable[EpisodeResult],
+    keys: tuple[str, ...] = ("family", "robot", "split", "condition"),
+) -> list[dict]:
+    """Rates with Wilson intervals per group of ``keys``."""
+    groups: dict[tuple, list[EpisodeResult]] = {}
+    for r in results:
+        groups.setdefault(tuple(getattr(r, k) for k in keys), []).append(r)
+    rows = []
+    for key, group in sorted(groups.items()):
+        n = len(group)
+        row = dict(zip(keys, key, strict=True), episodes=n)
+        rates = {s: sum(r.stages[s] for r in group) for s in group[0].stages}
+        rates.update(
+            success=sum(r.success for r in group),
+            any_reach=sum(r.any_reach for r in group),
+            any_lift=sum(r.any_lift for r in group),
+            grounding_error=sum(r.grounding_error for r in group),
+            control_error=sum(r.control_error for r in group),
+        )
+        for name, k in rates.items():
+            row[name] = k / n
+            row[f"{name}_ci"] = wilson(k, n)
+        row["stage_score"] = sum(r.stage_score for r in group) / n
+        row["chance"] = sum(1.0 / r.num_goals for r in group) / n
+        rows.append(row)
+    return rows
+
+
+def paper_cell(row: dict) -> str:
+    """``Reach/Lift (S)`` or ``ReachPick/LiftPick/ReachPlace/Place (S)``."""
+    stages = PLACE_STAGES if "place" in row else PICK_STAGES
+    return "/".join(f"{row[s]:.2f}" for s in stages) + f" ({row['stage_score']:.2f})"
+
+
+def markdown_table(
+    rows: list[dict], keys: tuple[str, ...] = ("family", "robot", "split", "condition")
+) -> str:
+    """The aggregates as a markdown table in the paper's format."""
+    lines = [
+        "| " + " | ".join(keys) + " | episodes | stages (S) | success [95% CI] | "
+        "grounding errors | control errors |",
+        "|" + "---|" * (len(keys) + 5),
+    ]
+    for row in rows:
+        lo, hi = row["success_ci"]
+        lines.append(
+            "| " + " | ".join(str(row[k]) for k in keys) + f" | {row['episodes']} | "
+            f"{paper_cell(row)} | {row['success']:.2f} [{lo:.2f}, {hi:.2f}] | "
+            f"{row['grounding_error']:.2f} | {row['control_error']:.2f} |"
+        )
+    return "\n".join(lines)

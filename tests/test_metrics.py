@@ -1,0 +1,94 @@
+"""Metrics: Wilson intervals, per-episode scoring, aggregation in the paper's format."""
+
+from __future__ import annotations
+
+import gymnasium as gym
+import numpy as np
+import pytest
+import torch
+
+import instructmove_ms  # noqa: F401
+from instructmove_ms import scripted
+from instructmove_ms.metrics import aggregate, markdown_table, score_episode, wilson
+
+
+def test_wilson_interval_matches_known_values():
+    assert wilson(0, 10) == pytest.approx((0.0, 0.2775), abs=1e-4)
+    assert wilson(5, 10) == pytest.approx((0.2366, 0.7634), abs=1e-4)
+    assert wilson(0, 0) == (0.0, 1.0)
+
+
+def _info(**flags):
+    base = dict(
+        reach=False,
+        lift=False,
+        success=False,
+        stage_score=0.0,
+        reached_object=-1,
+        lifted_object=-1,
+        any_reach=False,
+        any_lift=False,
+    )
+    base.update(flags)
+    return {k: torch.tensor([v]) for k, v in base.items()}
+
+
+@pytest.fixture(scope="module")
+def attribute_spec():
+    env = gym.make("PickAttribute-InstructMove", obs_mode="state", render_backend="none")
+    spec = env.unwrapped.sample_episode(3)
+    yield spec, env.unwrapped.catalog
+    env.close()
+
+
+def test_grounding_and_control_errors_are_told_apart(attribute_spec):
+    spec, catalog = attribute_spec
+    wrong = next(k for k in spec.candidates if k != spec.target)
+    grounding = score_episode(spec, _info(reached_object=wrong, any_reach=True), catalog)
+    assert grounding.grounding_error and not grounding.control_error
+    assert "category" in grounding.shared, "same-category distractor"
+    control = score_episode(
+        spec,
+        _info(reach=True, reached_object=spec.target, stage_score=0.5, any_reach=True),
+        catalog,
+    )
+    assert control.control_error and not control.grounding_error
+    done = score_episode(
+        spec,
+        _info(
+            reach=True,
+            lift=True,
+            success=True,
+            stage_score=1.0,
+            reached_object=spec.target,
+            lifted_object=spec.target,
+        ),
+        catalog,
+    )
+    assert done.success and not done.control_error and not done.grounding_error
+    rows = aggregate([grounding, control, done])
+    assert len(rows) == 1 and rows[0]["episodes"] == 3
+    assert rows[0]["reach"] == pytest.approx(2 / 3) and rows[0]["success"] == pytest.approx(1 / 3)
+    assert rows[0]["chance"] == pytest.approx(1 / spec.num_goals)
+    assert "0.67/0.33 (0.50)" in markdown_table(rows)
+
+
+def test_live_oracle_reach_scores_as_control_errors():
+    """The reaching oracle never lifts: reach 1, lift 0, every episode a control error."""
+    env = gym.make(
+        "PickCategory-InstructMove",
+        obs_mode="state",
+        render_backend="none",
+        control_mode="pd_ee_delta_pose",
+    )
+    results = []
+    rng = np.random.default_rng(0)
+    for seed in range(3):
+        env.reset(seed=seed)
+        spec = env.unwrapped.episode
+        info = scripted.reach_object(env, scripted.choose(spec, rng, True))
+        results.append(score_episode(spec, info, env.unwrapped.catalog))
+    env.close()
+    (row,) = aggregate(results)
+    assert row["reach"] >= 2 / 3 and row["lift"] == 0.0
+    assert row["control_error"] == row["reach"] and row["grounding_error"] == 0.0
