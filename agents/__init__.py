@@ -2,7 +2,15 @@
 
 from .franka import FRANKA_REST_QPOS, FrankaInstructMove
 from .interface import InstructMoveAgent
+from .piperx import PiperX, PiperXSingle
 
-ROBOTS = ("franka",)
+ROBOTS = ("franka", "piperx", "piperx_single")
 
-__all__ = ["FRANKA_REST_QPOS", "ROBOTS", "FrankaInstructMove", "InstructMoveAgent"]
+__all__ = [
+    "FRANKA_REST_QPOS",
+    "ROBOTS",
+    "FrankaInstructMove",
+    "InstructMoveAgent",
+    "PiperX",
+    "PiperXSingle",
+]

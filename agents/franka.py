@@ -31,9 +31,10 @@ class FrankaInstructMove(InstructMoveAgent, Panda):
     """Franka Panda for InstructMove.
 
     Control modes are ManiSkill's Panda ones; the default ``pd_joint_pos`` is the 8-D policy
-    interface: 7 absolute joint positions (rad) and 1 gripper value, the finger opening in
-    metres (0.04 open, 0.0 closed). ``pd_joint_delta_pos`` and ``pd_ee_delta_pose`` keep the
-    arm controller under the key ``arm``, so ManiSkill's replay converts between them.
+    interface: 7 absolute joint positions (rad) and 1 gripper value in [-1, 1] (ManiSkill's
+    normalised Panda gripper: 1 opens each finger to 0.04 m, -1 closes).
+    ``pd_joint_delta_pos`` and ``pd_ee_delta_pose`` keep the arm controller under the key
+    ``arm``, so ManiSkill's replay converts between them.
 
     Cameras (published intrinsics at 1280x720; default resolution 160x90):
     ``ext1_camera`` and ``ext2_camera`` on the base frame looking at the workspace, and

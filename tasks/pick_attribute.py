@@ -14,8 +14,8 @@ PICK_ATTRIBUTE = TaskSpec(
     env_id="PickAttribute-InstructMove",
     family="pick_attribute",
     cue="attribute",
-    default_robot="franka",
-    supported_robots=("franka",),
+    default_robot="piperx",
+    supported_robots=("franka", "piperx"),
     roles=(
         RoleSpec("target", 1, pool="target"),
         RoleSpec(

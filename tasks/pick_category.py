@@ -26,8 +26,8 @@ PICK_CATEGORY = TaskSpec(
     env_id="PickCategory-InstructMove",
     family="pick_category",
     cue="category",
-    default_robot="franka",
-    supported_robots=("franka",),
+    default_robot="piperx",
+    supported_robots=("franka", "piperx"),
     roles=(
         RoleSpec("target", 1, pool="target"),
         RoleSpec(

@@ -16,7 +16,7 @@ PICK_SPATIAL = TaskSpec(
     family="pick_spatial",
     cue="spatial",
     default_robot="franka",
-    supported_robots=("franka",),
+    supported_robots=("franka", "piperx"),
     roles=(
         RoleSpec("target", 1, pool="target"),
         RoleSpec(

@@ -17,8 +17,8 @@ PLACE_A2B = TaskSpec(
     env_id="PlaceA2B-InstructMove",
     family="place_a2b",
     cue="place",
-    default_robot="franka",
-    supported_robots=("franka",),
+    default_robot="piperx",
+    supported_robots=("franka", "piperx"),
     roles=(
         RoleSpec("target", 1, pool="target", max_footprint=MAX_OBJECT_FOOTPRINT),
         RoleSpec(

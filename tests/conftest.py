@@ -11,6 +11,7 @@ ENV_ID = "PickCategory-InstructMove"
 
 
 def make_env(**kwargs):
+    kwargs.setdefault("robot_uids", "franka")  # the scripted tests drive a Franka
     kwargs.setdefault("obs_mode", "state")
     kwargs.setdefault("render_backend", "none")
     return gym.make(ENV_ID, **kwargs)

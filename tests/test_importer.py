@@ -28,12 +28,26 @@ def source(tmp_path, monkeypatch):
     folder = tmp_path / "scans"
     folder.mkdir()
     _cup_mesh().export(folder / "cup.obj")
-    (folder / "metadata.json").write_text(json.dumps({"assets": [{
-        "id": "scan_cup_01", "mesh": "cup.obj", "category": "mouthwash_cup",
-        "colors": ["blue"], "material": "plastic", "shape": "cylinder", "graspable": True,
-        "container": True, "scale": 1.0,
-        "interior": {"center": [0, 0, 0.006], "half": [0.02, 0.02], "height": 0.08},
-    }]}))
+    (folder / "metadata.json").write_text(
+        json.dumps(
+            {
+                "assets": [
+                    {
+                        "id": "scan_cup_01",
+                        "mesh": "cup.obj",
+                        "category": "mouthwash_cup",
+                        "colors": ["blue"],
+                        "material": "plastic",
+                        "shape": "cylinder",
+                        "graspable": True,
+                        "container": True,
+                        "scale": 1.0,
+                        "interior": {"center": [0, 0, 0.006], "half": [0.02, 0.02], "height": 0.08},
+                    }
+                ]
+            }
+        )
+    )
     return folder
 
 

@@ -80,6 +80,7 @@ def test_live_oracle_reach_scores_as_control_errors():
         obs_mode="state",
         render_backend="none",
         control_mode="pd_ee_delta_pose",
+        robot_uids="franka",
     )
     results = []
     rng = np.random.default_rng(0)

@@ -15,7 +15,13 @@ ORACLE_EPISODES, BLIND_EPISODES = 20, 40
 
 def _reach_rate(env_id: str, privileged: bool, episodes: int, seed0: int) -> tuple[float, float]:
     """(reach rate, mean 1/|candidates|) of the scripted policy over ``episodes`` seeds."""
-    env = gym.make(env_id, obs_mode="state", render_backend="none", control_mode="pd_ee_delta_pose")
+    env = gym.make(
+        env_id,
+        obs_mode="state",
+        render_backend="none",
+        control_mode="pd_ee_delta_pose",
+        robot_uids="franka",
+    )
     rng = np.random.default_rng(seed0)
     reached, chance = [], []
     for seed in range(seed0, seed0 + episodes):
