@@ -33,8 +33,10 @@ def steps_per_second(env_id: str, obs_mode: str, steps: int, **kwargs) -> float:
 
 
 def reset_times(resets: int) -> tuple[float, float]:
-    fixed = gym.make(ENV_ID, obs_mode="state", render_backend="cpu", reconfiguration_freq=0)
-    fresh = gym.make(ENV_ID, obs_mode="state", render_backend="cpu")
+    fixed = gym.make(
+        ENV_ID, obs_mode="state", render_backend="cpu", reconfiguration_freq=0, robot_uids="franka"
+    )
+    fresh = gym.make(ENV_ID, obs_mode="state", render_backend="cpu", robot_uids="franka")
     out = []
     for env in (fixed, fresh):
         env.reset(seed=0)
@@ -92,11 +94,12 @@ def main() -> None:
     args = parser.parse_args()
     for mode, steps in (("state", args.steps), ("rgb", args.rgb_steps)):
         base = steps_per_second("PickCube-v1", mode, steps)
-        ours = steps_per_second(ENV_ID, mode, steps)
-        print(
-            f"{mode:5s} obs: {ENV_ID} {ours:7.1f} steps/s, PickCube-v1 {base:7.1f} steps/s, "
-            f"ratio {ours / base:.2f}"
-        )
+        for robot in ("franka", "piperx"):
+            ours = steps_per_second(ENV_ID, mode, steps, robot_uids=robot)
+            print(
+                f"{mode:5s} obs: {ENV_ID} ({robot}) {ours:7.1f} steps/s, PickCube-v1 (panda) "
+                f"{base:7.1f} steps/s, ratio {ours / base:.2f}"
+            )
     same, new = reset_times(args.resets)
     print(
         f"reset without reconfigure {same * 1e3:.1f} ms, reset with a new scene "
