@@ -12,14 +12,17 @@ import torch
 
 SERVO_GAIN = 1.5
 STEP_LIMIT = 0.1  # metres per unit action of pd_ee_delta_pose
+OPEN, CLOSED = 1.0, -1.0  # normalised gripper actions
 
 
 def tcp_position(env) -> np.ndarray:
     return env.unwrapped.agent.tcp_positions()[0, 0].cpu().numpy()
 
 
-def servo(env, goal: np.ndarray, gripper: float, steps: int, tol: float = 0.005) -> dict:
-    """Move the first arm's TCP towards ``goal``; returns the last step's info."""
+def servo(env, goal, gripper: float, steps: int = 60, tol: float = 0.005) -> dict:
+    """Move the first arm's TCP towards ``goal`` (world xyz, orientation kept); returns the
+    last step's info."""
+    goal = np.asarray(goal, dtype=float)
     info: dict = {}
     for _ in range(steps):
         action = np.zeros(env.action_space.shape[-1], dtype=np.float32)
@@ -29,6 +32,11 @@ def servo(env, goal: np.ndarray, gripper: float, steps: int, tol: float = 0.005)
         if np.linalg.norm(goal - tcp_position(env)) < tol:
             break
     return info
+
+
+def hold(env, gripper: float, steps: int) -> dict:
+    """Keep the TCP where it is for ``steps`` steps with the gripper at ``gripper``."""
+    return servo(env, tcp_position(env), gripper, steps, tol=-1.0)
 
 
 def object_top(env, index: int) -> np.ndarray:

@@ -8,7 +8,8 @@ import pytest
 from conftest import make_env
 from instructmove_ms.assets import load_snapshot
 from instructmove_ms.episode import EpisodeSpec, ObjectSpec
-from scripted import CLOSED, OPEN, hold, move_to
+from instructmove_ms.scripted import CLOSED, OPEN, hold
+from instructmove_ms.scripted import servo as move_to
 
 LAYOUT = [  # category, x, y (robot frame)
     ("canned_coke", 0.45, -0.05),
