@@ -41,7 +41,7 @@ def data_home() -> Path:
     return Path(os.environ.get("INSTRUCTMOVE_HOME", Path.home() / ".instructmove"))
 
 
-class ImportError_(ValueError):
+class AssetImportError(ValueError):
     """Bad metadata or mesh in an import folder."""
 
 
@@ -54,25 +54,27 @@ class Piece:
 def _check_entry(entry: dict, index: int) -> None:
     missing = [k for k in REQUIRED if k not in entry]
     if missing:
-        raise ImportError_(f"asset #{index}: missing fields {missing}; required: {list(REQUIRED)}")
+        raise AssetImportError(
+            f"asset #{index}: missing fields {missing}; required: {list(REQUIRED)}"
+        )
     for color in entry["colors"]:
         if color not in COLORS:
-            raise ImportError_(
+            raise AssetImportError(
                 f"asset {entry['id']!r}: unknown colour {color!r}; allowed: {sorted(COLORS)}"
             )
     if not 1 <= len(entry["colors"]) <= 2:
-        raise ImportError_(f"asset {entry['id']!r}: give 1 or 2 colours")
+        raise AssetImportError(f"asset {entry['id']!r}: give 1 or 2 colours")
     if entry["material"] not in MATERIALS:
-        raise ImportError_(
+        raise AssetImportError(
             f"asset {entry['id']!r}: unknown material {entry['material']!r}; "
             f"allowed: {sorted(MATERIALS)}"
         )
     if entry["shape"] not in SHAPES:
-        raise ImportError_(
+        raise AssetImportError(
             f"asset {entry['id']!r}: unknown shape {entry['shape']!r}; allowed: {list(SHAPES)}"
         )
     if entry["category"] not in taxonomy() and not {"domain", "super_category"} <= set(entry):
-        raise ImportError_(
+        raise AssetImportError(
             f"asset {entry['id']!r}: category {entry['category']!r} is not in "
             "the taxonomy; give its domain and super_category"
         )
@@ -124,13 +126,13 @@ def import_asset(entry: dict, source: Path, threshold: float = 0.05) -> Instance
     """One metadata entry of ``source`` as an instance (mesh decomposed, recentred)."""
     mesh_path = source / entry["mesh"]
     if not mesh_path.is_file():
-        raise ImportError_(f"asset {entry['id']!r}: mesh file {mesh_path} not found")
+        raise AssetImportError(f"asset {entry['id']!r}: mesh file {mesh_path} not found")
     try:
         mesh = trimesh.load(mesh_path, force="mesh")
     except Exception as exc:
-        raise ImportError_(f"asset {entry['id']!r}: cannot read {mesh_path}: {exc}") from exc
+        raise AssetImportError(f"asset {entry['id']!r}: cannot read {mesh_path}: {exc}") from exc
     if not isinstance(mesh, trimesh.Trimesh) or len(mesh.faces) == 0:
-        raise ImportError_(f"asset {entry['id']!r}: {mesh_path} holds no triangle mesh")
+        raise AssetImportError(f"asset {entry['id']!r}: {mesh_path} holds no triangle mesh")
     scale = float(entry.get("scale", 1.0))
     mesh.apply_scale(scale)
     lo, hi = mesh.bounds
@@ -202,11 +204,11 @@ def import_asset(entry: dict, source: Path, threshold: float = 0.05) -> Instance
 def read_metadata(source: Path) -> list[dict]:
     path = source / "metadata.json"
     if not path.is_file():
-        raise ImportError_(f"{path} not found: an import folder needs a metadata.json")
+        raise AssetImportError(f"{path} not found: an import folder needs a metadata.json")
     try:
         entries = json.loads(path.read_text())["assets"]
     except (json.JSONDecodeError, KeyError, TypeError) as exc:
-        raise ImportError_(f'{path}: expected {{"assets": [...]}}: {exc}') from exc
+        raise AssetImportError(f'{path}: expected {{"assets": [...]}}: {exc}') from exc
     for k, entry in enumerate(entries):
         _check_entry(entry, k)
     return entries

@@ -22,7 +22,6 @@ from .generators import GENERATORS
 from .importer import data_home
 
 DEFAULT_SNAPSHOT = "default"
-INSTANCES_PER_CATEGORY = 10
 SNAPSHOT_DIR = "snapshots"
 
 

@@ -60,6 +60,7 @@ def _cmd_assets_list(args: argparse.Namespace) -> int:
 
 
 TRIAL_TARGET = 0.95
+INSTANCES_PER_CATEGORY = 10  # in the default snapshot
 
 
 def _cmd_assets_check(args: argparse.Namespace) -> int:
@@ -223,7 +224,7 @@ def build_parser() -> argparse.ArgumentParser:
     )
     p = assets.add_parser("build", help="generate the library and freeze it as a snapshot")
     p.add_argument("--name", default="default", help="snapshot name (default: the shipped one)")
-    p.add_argument("--per-category", type=int, default=10)
+    p.add_argument("--per-category", type=int, default=INSTANCES_PER_CATEGORY)
     p.set_defaults(func=_cmd_assets_build)
     p = assets.add_parser("import", help="import a folder of meshes + metadata.json")
     p.add_argument("source", help="folder with metadata.json and the mesh files")

@@ -9,7 +9,7 @@ import pytest
 import trimesh
 
 from instructmove_ms.assets import snapshot as snap
-from instructmove_ms.assets.importer import ImportError_, read_metadata
+from instructmove_ms.assets.importer import AssetImportError, read_metadata
 from instructmove_ms.assets.sim import TIMESTEP, spawn, table_scene
 
 
@@ -83,5 +83,5 @@ def test_bad_metadata_names_the_problem(source):
     meta = json.loads((source / "metadata.json").read_text())
     meta["assets"][0]["material"] = "unobtainium"
     (source / "metadata.json").write_text(json.dumps(meta))
-    with pytest.raises(ImportError_, match="'unobtainium'.*allowed"):
+    with pytest.raises(AssetImportError, match="'unobtainium'.*allowed"):
         read_metadata(source)

@@ -17,10 +17,11 @@ from instructmove_ms.planning import (
     CollisionWorld,
     JointLimits,
     cartesian_path,
+    densify,
     plan_joint_path,
     time_parametrize,
+    to_actions,
 )
-from instructmove_ms.planning.planner import densify, to_actions
 
 OPEN, CLOSED = 1.0, -1.0
 REST = (0.0, -0.569, 0.0, -1.97, 0.0, 1.5, 0.741, 0.04, 0.04)
