@@ -15,21 +15,29 @@ STEP_LIMIT = 0.1  # metres per unit action of pd_ee_delta_pose
 OPEN, CLOSED = 1.0, -1.0  # normalised gripper actions
 
 
-def tcp_position(env) -> np.ndarray:
-    return env.unwrapped.agent.tcp_positions()[0, 0].cpu().numpy()
+def tcp_position(env, arm: int = 0) -> np.ndarray:
+    return env.unwrapped.agent.tcp_positions()[0, arm].cpu().numpy()
 
 
-def servo(env, goal, gripper: float, steps: int = 60, tol: float = 0.005) -> dict:
-    """Move the first arm's TCP towards ``goal`` (world xyz, orientation kept); returns the
-    last step's info."""
+def _ee_action(env, arm: int, delta: np.ndarray, gripper: float) -> np.ndarray:
+    """A ``pd_ee_delta_pose`` action moving ``arm``'s TCP by ``delta`` (normalised): the
+    Franka's is [xyz, rpy, gripper]; the PiperX's [left xyz rpy, right xyz rpy, grippers]."""
+    action = np.zeros(env.action_space.shape[-1], dtype=np.float32)
+    arms = env.unwrapped.agent.tcp_positions().shape[1]
+    action[6 * arm : 6 * arm + 3] = delta
+    action[6 * arms :] = gripper
+    return action
+
+
+def servo(env, goal, gripper: float, steps: int = 60, tol: float = 0.005, arm: int = 0) -> dict:
+    """Move ``arm``'s TCP towards ``goal`` (world xyz, orientation kept); returns the last
+    step's info."""
     goal = np.asarray(goal, dtype=float)
     info: dict = {}
     for _ in range(steps):
-        action = np.zeros(env.action_space.shape[-1], dtype=np.float32)
-        action[:3] = np.clip((goal - tcp_position(env)) / STEP_LIMIT * SERVO_GAIN, -1.0, 1.0)
-        action[6] = gripper
-        _, _, _, _, info = env.step(torch.from_numpy(action)[None])
-        if np.linalg.norm(goal - tcp_position(env)) < tol:
+        delta = np.clip((goal - tcp_position(env, arm)) / STEP_LIMIT * SERVO_GAIN, -1.0, 1.0)
+        _, _, _, _, info = env.step(torch.from_numpy(_ee_action(env, arm, delta, gripper))[None])
+        if np.linalg.norm(goal - tcp_position(env, arm)) < tol:
             break
     return info
 
@@ -46,17 +54,25 @@ def object_top(env, index: int) -> np.ndarray:
     return u.objects[index].pose.p[0].cpu().numpy() + np.array([0.0, 0.0, inst.height])
 
 
+def arm_for(env, xy) -> int:
+    """The arm whose base is nearest ``xy`` (the left one for objects on the left)."""
+    tcps = env.unwrapped.agent.tcp_positions()[0].cpu().numpy()
+    return int(np.argmin(np.linalg.norm(tcps[:, :2] - np.asarray(xy)[:2], axis=1)))
+
+
 def reach_object(env, index: int, steps: int = 80) -> dict:
-    """Go above object ``index``, then onto its top; returns the final info."""
+    """Go above object ``index``, then onto its top, with the nearest arm; returns the
+    final info."""
     top = object_top(env, index)
+    arm = arm_for(env, top)
     clear = (
         max(
             o.height for o in (env.unwrapped.catalog[x.uuid] for x in env.unwrapped.episode.objects)
         )
         + 0.08
     )
-    servo(env, np.array([top[0], top[1], clear]), 1.0, steps, tol=0.03)
-    return servo(env, top - np.array([0.0, 0.0, 0.01]), 1.0, steps)
+    servo(env, np.array([top[0], top[1], clear]), OPEN, steps, tol=0.03, arm=arm)
+    return servo(env, top - np.array([0.0, 0.0, 0.01]), OPEN, steps, arm=arm)
 
 
 def choose(spec, rng: np.random.Generator, privileged: bool) -> int:

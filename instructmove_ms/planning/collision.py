@@ -1,0 +1,256 @@
+"""A python-fcl collision world: one arm's robot posed by FK against the table and the objects.
+
+Geometry comes from the SAPIEN physx collision shapes of the robot's links and of the scene
+actors (boxes, spheres, capsules, cylinders, convex and triangle meshes; planes such as the
+floor are left out). Poses are in the robot's base frame.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+from dataclasses import dataclass
+
+import fcl
+import numpy as np
+import sapien
+import sapien.physx as physx
+
+from .kinematics import ArmKinematics
+
+#: SAPIEN's capsules and cylinders run along local x, fcl's along local z.
+_X_TO_Z = sapien.Pose(q=[np.sqrt(0.5), 0.0, np.sqrt(0.5), 0.0])
+_ATTACHED = "attached"
+
+
+@dataclass
+class Shape:
+    """One fcl object, its geometry and its pose in its body's frame."""
+
+    obj: fcl.CollisionObject
+    geom: fcl.CollisionGeometry
+    local: np.ndarray
+
+
+Geoms = list[Shape]
+
+
+def shape_geometry(shape: physx.PhysxCollisionShape) -> tuple[fcl.CollisionGeometry, sapien.Pose]:
+    """The fcl geometry of a SAPIEN collision shape and its pose in the body frame."""
+    local = shape.get_local_pose()
+    if isinstance(shape, physx.PhysxCollisionShapeBox):
+        return fcl.Box(*(2.0 * np.asarray(shape.half_size))), local
+    if isinstance(shape, physx.PhysxCollisionShapeSphere):
+        return fcl.Sphere(shape.radius), local
+    if isinstance(shape, physx.PhysxCollisionShapeCapsule):
+        return fcl.Capsule(shape.radius, 2.0 * shape.half_length), local * _X_TO_Z
+    if isinstance(shape, physx.PhysxCollisionShapeCylinder):
+        return fcl.Cylinder(shape.radius, 2.0 * shape.half_length), local * _X_TO_Z
+    if isinstance(
+        shape, physx.PhysxCollisionShapeConvexMesh | physx.PhysxCollisionShapeTriangleMesh
+    ):
+        verts = np.asarray(shape.get_vertices(), dtype=float) * np.asarray(shape.get_scale())
+        tris = np.asarray(shape.get_triangles(), dtype=np.int64)
+        if isinstance(shape, physx.PhysxCollisionShapeTriangleMesh):
+            mesh = fcl.BVHModel()
+            mesh.beginModel(len(verts), len(tris))
+            mesh.addSubModel(verts, tris)
+            mesh.endModel()
+            return mesh, local
+        faces = np.hstack([np.full((len(tris), 1), 3), tris]).ravel()
+        return fcl.Convex(verts, len(tris), faces), local
+    raise TypeError(f"unsupported collision shape {type(shape).__name__}")
+
+
+def _body_geoms(shapes: Iterable[physx.PhysxCollisionShape]) -> Geoms:
+    out = []
+    for shape in shapes:
+        if isinstance(shape, physx.PhysxCollisionShapePlane):
+            continue
+        geom, local = shape_geometry(shape)
+        obj = fcl.CollisionObject(geom, fcl.Transform())
+        out.append(Shape(obj, geom, local.to_transformation_matrix()))
+    return out
+
+
+def _place(geoms: Geoms, body: np.ndarray) -> None:
+    for shape in geoms:
+        m = body @ shape.local
+        shape.obj.setTransform(fcl.Transform(m[:3, :3], m[:3, 3]))
+
+
+def _actor_shapes(actor) -> list[physx.PhysxCollisionShape]:
+    """Collision shapes of a ManiSkill actor (first sub-scene)."""
+    body = actor._objs[0].find_component_by_type(physx.PhysxRigidBaseComponent)
+    return list(body.get_collision_shapes())
+
+
+class CollisionWorld:
+    """The arm of ``kin`` against named static obstacles, with allowed-contact filtering.
+
+    ``in_collision(q)`` checks self-collision (adjacent and sibling links, and links already
+    touching at construction, are ignored) and robot-obstacle collision. A grasped object can
+    be attached to the end effector; it then moves with the arm and may touch the gripper.
+    """
+
+    def __init__(self, kin: ArmKinematics, robot, obstacles: dict[str, tuple[Geoms, np.ndarray]]):
+        self.kin = kin
+        self.links: dict[str, Geoms] = {}
+        for link in robot.get_links():
+            geoms = _body_geoms(link._objs[0].get_collision_shapes())
+            if geoms:
+                self.links[link.name] = geoms
+        self.obstacles: dict[str, Geoms] = {}
+        for name, (geoms, pose) in obstacles.items():
+            _place(geoms, pose)
+            self.obstacles[name] = geoms
+        self.attached: tuple[str, Geoms] | None = None
+        self.allowed: set[frozenset[str]] = set()
+        parent = {}
+        for joint in robot.get_joints():
+            if joint.parent_link is not None:
+                parent[joint.child_link.name] = joint.parent_link.name
+        fixed = {j.child_link.name for j in robot.get_joints() if j.type[0] == "fixed"}
+        #: Links that no joint moves: the root and what is fixed to it.
+        self.base_links = {kin.links[0]}
+        for name in kin.links:  # links come parents first
+            if name in fixed and parent.get(name) in self.base_links:
+                self.base_links.add(name)
+        for child, par in parent.items():
+            self.allow(child, par)
+            for other, other_par in parent.items():
+                if other_par == par and other != child:
+                    self.allow(child, other)
+        ee = kin.links[kin.ee_index]
+        #: Links that may touch an attached object: the end effector's parent and its subtree.
+        self.gripper_links = {parent.get(ee, ee)}
+        while True:
+            more = {c for c, p in parent.items() if p in self.gripper_links} - self.gripper_links
+            if not more:
+                break
+            self.gripper_links |= more
+        self._rebuild()
+        for a, b in self.contacts(kin.qpos[kin.arm]):
+            if a in self.links and b in self.links:
+                self.allow(a, b)
+
+    @classmethod
+    def from_env(cls, env, kin: ArmKinematics) -> CollisionWorld:
+        """The env's table and objects (actors ``table`` and ``object_k``, at their current
+        poses) as obstacles named ``table`` and ``object_k``."""
+        u = env.unwrapped
+        base_inv = u.agent.robot.pose.sp.inv()
+        actors = {"table": u.scene.actors["table"]}
+        actors.update({obj.name: obj for obj in u.objects})
+        obstacles = {
+            name: (
+                _body_geoms(_actor_shapes(actor)),
+                (base_inv * actor.pose.sp).to_transformation_matrix(),
+            )
+            for name, actor in actors.items()
+        }
+        world = cls(kin, u.agent.robot, obstacles)
+        for link in world.base_links:  # the base stands on the table
+            world.allow(link, "table")
+        return world
+
+    def add_obstacle(
+        self,
+        name: str,
+        geometry: list[tuple[fcl.CollisionGeometry, sapien.Pose]],
+        pose: sapien.Pose,
+    ) -> None:
+        """Add (or replace) a static obstacle: fcl geometries posed in a body at ``pose``."""
+        geoms = []
+        for geom, local in geometry:
+            obj = fcl.CollisionObject(geom, fcl.Transform())
+            geoms.append(Shape(obj, geom, local.to_transformation_matrix()))
+        _place(geoms, pose.to_transformation_matrix())
+        self.obstacles[name] = geoms
+        self._rebuild()
+
+    def allow(self, a: str, b: str) -> None:
+        """Let bodies ``a`` and ``b`` (link, obstacle or ``"attached"`` names) touch."""
+        self.allowed.add(frozenset((a, b)))
+
+    def forbid(self, a: str, b: str) -> None:
+        self.allowed.discard(frozenset((a, b)))
+
+    def _rebuild(self) -> None:
+        self._names: dict[int, str] = {}
+        robot_objs, obstacle_objs = [], []
+        bodies = list(self.links.items())
+        if self.attached is not None:
+            bodies.append((_ATTACHED, self.attached[1]))
+        for name, geoms in bodies:
+            for shape in geoms:
+                self._names[id(shape.geom)] = name
+                robot_objs.append(shape.obj)
+        for name, geoms in self.obstacles.items():
+            for shape in geoms:
+                self._names[id(shape.geom)] = name
+                obstacle_objs.append(shape.obj)
+        self._robot = fcl.DynamicAABBTreeCollisionManager()
+        self._robot.registerObjects(robot_objs)
+        self._robot.setup()
+        self._static = fcl.DynamicAABBTreeCollisionManager()
+        self._static.registerObjects(obstacle_objs)
+        self._static.setup()
+
+    def _pose_robot(self, q: np.ndarray) -> np.ndarray:
+        """Move the robot's geometry to ``q``; returns the end-effector pose matrix."""
+        poses = self.kin.link_poses(q)
+        for i, name in enumerate(self.kin.links):
+            if name in self.links:
+                _place(self.links[name], poses[i].to_transformation_matrix())
+        ee = poses[self.kin.ee_index].to_transformation_matrix()
+        if self.attached is not None:
+            _place(self.attached[1], ee)
+        self._robot.update()
+        return ee
+
+    def contacts(self, q: np.ndarray) -> set[tuple[str, str]]:
+        """Pairs of bodies in collision at arm configuration ``q``, allowed pairs left out."""
+        self._pose_robot(q)
+        pairs = set()
+        for other in (None, self._static):
+            request = fcl.CollisionRequest(num_max_contacts=100000, enable_contact=True)
+            data = fcl.CollisionData(request=request)
+            if other is None:
+                self._robot.collide(data, fcl.defaultCollisionCallback)
+            else:
+                self._robot.collide(other, data, fcl.defaultCollisionCallback)
+            for c in data.result.contacts:
+                a, b = self._names[id(c.o1)], self._names[id(c.o2)]
+                if a != b and frozenset((a, b)) not in self.allowed:
+                    pairs.add((min(a, b), max(a, b)))
+        return pairs
+
+    def in_collision(self, q: np.ndarray) -> bool:
+        return bool(self.contacts(q))
+
+    def attach(self, name: str, q: np.ndarray) -> None:
+        """Carry obstacle ``name`` with the end effector from configuration ``q`` on; it may
+        touch the gripper links."""
+        ee_inv = np.linalg.inv(self._pose_robot(q))
+        geoms = self.obstacles.pop(name)
+        self.attached = (name, [Shape(s.obj, s.geom, ee_inv @ _matrix(s.obj)) for s in geoms])
+        for link in self.gripper_links:
+            self.allow(_ATTACHED, link)
+        self._rebuild()
+
+    def detach(self, q: np.ndarray) -> str:
+        """Leave the attached object where configuration ``q`` puts it; returns its name."""
+        if self.attached is None:
+            raise RuntimeError("nothing is attached")
+        name, geoms = self.attached
+        self._pose_robot(q)
+        self.obstacles[name] = [Shape(s.obj, s.geom, _matrix(s.obj)) for s in geoms]
+        self.attached = None
+        self._rebuild()
+        return name
+
+
+def _matrix(obj: fcl.CollisionObject) -> np.ndarray:
+    m = np.eye(4)
+    m[:3, :3], m[:3, 3] = obj.getRotation(), obj.getTranslation()
+    return m
