@@ -1,4 +1,4 @@
-"""The ``instructmove`` command line."""
+"""InstructMove-MS from the command line: envs, episodes and the object library."""
 
 from __future__ import annotations
 
@@ -27,6 +27,7 @@ def _cmd_episode(args: argparse.Namespace) -> int:
         args.task,
         robot_uids=args.robot,
         split=args.split,
+        condition=args.condition,
         obs_mode="state",
         render_backend="none" if args.no_render else "cpu",
     )
@@ -203,6 +204,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--robot", default=None, help="robot uid (default: the task's)")
     p.add_argument("--split", default="train")
     p.add_argument("--seed", type=int, default=0)
+    p.add_argument("--condition", default="normal", help="instruction condition")
     p.add_argument("--no-render", action="store_true", help="build the scene without a renderer")
     p.set_defaults(func=_cmd_episode)
     episodes = sub.add_parser("episodes", help="held-out evaluation episode sets")
