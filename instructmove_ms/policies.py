@@ -1,0 +1,120 @@
+"""Reference policies in ManiSkill's evaluator convention.
+
+A policy is a class with ``get_obs_mode()``, ``get_control_mode()``, ``reset(obs)`` and
+``act(obs)``. Privileged reference policies also get ``bind(env)``, which the evaluator
+calls before each episode, to read the scene (a learned policy never does).
+
+- ``OraclePolicy``: goes for the instruction's target (privileged), grasps it top-down and
+  lifts it; for PlaceA2B it then carries it over the goal receptacle and opens.
+- ``BlindPolicy``: the same skill on a random candidate: what a policy that ignores the
+  language can score (about 1/|G|).
+- ``RandomPolicy``: random actions.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import torch
+
+from .scripted import CLOSED, OPEN, SERVO_GAIN, STEP_LIMIT, _ee_action, arm_for, tcp_position
+
+GRASP_DEPTH = 0.035  # below an object's top, where the fingers close
+CLEARANCE = 0.08  # above the tallest object while moving across the table
+MAX_WAYPOINT_STEPS = 90  # give up on a waypoint the arm cannot reach
+
+
+class RandomPolicy:
+    def __init__(self, seed: int = 0) -> None:
+        self.rng = np.random.default_rng(seed)
+        self.space = None
+
+    def get_obs_mode(self) -> str:
+        return "state"
+
+    def get_control_mode(self) -> str:
+        return "pd_joint_delta_pos"
+
+    def bind(self, env) -> None:
+        self.space = env.action_space
+
+    def reset(self, obs) -> None:
+        pass
+
+    def act(self, obs) -> np.ndarray:
+        low, high = self.space.low, self.space.high
+        return self.rng.uniform(low, high).astype(np.float32)
+
+
+class OraclePolicy:
+    """Top-down scripted pick (and place) of a chosen object, with the nearest arm."""
+
+    def __init__(self, seed: int = 0) -> None:
+        self.rng = np.random.default_rng(seed)
+        self.env = None
+
+    def get_obs_mode(self) -> str:
+        return "state"
+
+    def get_control_mode(self) -> str:
+        return "pd_ee_delta_pose"
+
+    def choose(self, spec) -> tuple[int, int]:
+        """(object, destination or -1): the goal, or random ones when there is none."""
+        obj = spec.target if spec.target >= 0 else int(self.rng.choice(spec.candidates))
+        if not spec.destinations:
+            return obj, -1
+        dest = spec.goal_destination
+        return obj, dest if dest >= 0 else int(self.rng.choice(spec.destinations))
+
+    def bind(self, env) -> None:
+        self.env = env
+
+    def reset(self, obs) -> None:
+        u = self.env.unwrapped
+        spec = u.episode
+        self.index, dest = self.choose(spec)
+        inst = u.catalog[spec.objects[self.index].uuid]
+        top = u.objects[self.index].pose.p[0].cpu().numpy() + [0.0, 0.0, inst.height]
+        clear = max(u.catalog[o.uuid].height for o in spec.objects) + CLEARANCE
+        grasp = top - [0.0, 0.0, min(GRASP_DEPTH, inst.height / 2)]
+        self.arm = arm_for(self.env, top)
+        plan = [
+            ([*top[:2], clear], OPEN, 0.03),
+            (grasp, OPEN, 0.006),
+            (grasp, CLOSED, -12),
+            ([*top[:2], clear], CLOSED, 0.02),
+        ]
+        if dest >= 0:
+            region = u.catalog[spec.objects[dest].uuid].interior
+            centre = u.objects[dest].pose.p[0].cpu().numpy() + np.asarray(region.center)
+            over = [centre[0], centre[1], clear]
+            drop = [centre[0], centre[1], region.center[2] + region.height + inst.height]
+            plan += [
+                (over, CLOSED, 0.02),
+                (drop, CLOSED, 0.01),
+                (drop, OPEN, -10),
+                (over, OPEN, 0.03),
+            ]
+        self.plan, self.waited = plan, 0
+
+    def act(self, obs) -> torch.Tensor:
+        goal, gripper, tol = self.plan[0]
+        here = tcp_position(self.env, self.arm)
+        delta = np.clip((np.asarray(goal) - here) / STEP_LIMIT * SERVO_GAIN, -1.0, 1.0)
+        close = tol > 0 and np.linalg.norm(goal - here) < tol
+        done = close or (tol < 0 and self.waited >= -tol) or self.waited >= MAX_WAYPOINT_STEPS
+        self.waited = 0 if done else self.waited + 1
+        if done and len(self.plan) > 1:
+            self.plan = self.plan[1:]
+        return torch.from_numpy(_ee_action(self.env, self.arm, delta, gripper))[None]
+
+
+class BlindPolicy(OraclePolicy):
+    """The oracle's skill on a random candidate (and destination): it ignores the text."""
+
+    def choose(self, spec) -> tuple[int, int]:
+        dest = int(self.rng.choice(spec.destinations)) if spec.destinations else -1
+        return int(self.rng.choice(spec.candidates)), dest
+
+
+REFERENCE_POLICIES = {"oracle": OraclePolicy, "blind": BlindPolicy, "random": RandomPolicy}
