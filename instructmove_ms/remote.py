@@ -9,6 +9,7 @@ client plays a chunk out before asking again). Arrays travel as maps with ``__nd
 
 from __future__ import annotations
 
+from contextlib import ExitStack
 from typing import Any
 
 import msgpack
@@ -66,7 +67,8 @@ class RemotePolicy:
         timeout: float = 60.0,
     ) -> None:
         self.uri, self.obs_mode, self.control_mode = uri, obs_mode, control_mode
-        self.socket = connect(uri, max_size=None, open_timeout=timeout)
+        self._stack = ExitStack()
+        self.socket = self._stack.enter_context(connect(uri, max_size=None, open_timeout=timeout))
         self.metadata = unpackb(self.socket.recv(timeout=timeout))
         self.timeout = timeout
         self.chunk: list[np.ndarray] = []
@@ -95,4 +97,4 @@ class RemotePolicy:
         return self.chunk.pop(0)[None]
 
     def close(self) -> None:
-        self.socket.close()
+        self._stack.close()
