@@ -194,6 +194,17 @@ def _cmd_episodes_show(args: argparse.Namespace) -> int:
     return 0
 
 
+def _cmd_demos_generate(args: argparse.Namespace) -> int:
+    import instructmove_ms  # noqa: F401  (registration)
+    from instructmove_ms.demos.generate import generate
+
+    report = generate(args.task, args.robot, args.n, args.out, args.seed0, args.workers)
+    print(f"{report.kept} demos from {report.tried} seeds: valid-synthesis rate {report.rate:.1%}")
+    print("failures: " + ", ".join(f"{k}={v}" for k, v in report.failures.items()))
+    print(f"-> {report.path}")
+    return 0
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(prog="instructmove", description=__doc__)
     sub = parser.add_subparsers(dest="command", required=True)
@@ -221,6 +232,17 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--split", default="seen")
     p.add_argument("--index", type=int, default=0)
     p.set_defaults(func=_cmd_episodes_show)
+    demos = sub.add_parser("demos", help="planned demonstrations").add_subparsers(
+        dest="demos_command", required=True
+    )
+    p = demos.add_parser("generate", help="record successful planned picks (resumable)")
+    p.add_argument("--task", default="PickCategory-InstructMove")
+    p.add_argument("--robot", default="franka")
+    p.add_argument("-n", type=int, default=100, help="demos to keep")
+    p.add_argument("--out", default="out/demos", help="output folder")
+    p.add_argument("--seed0", type=int, default=0, help="first training seed")
+    p.add_argument("--workers", type=int, default=1, help="only 1 is supported")
+    p.set_defaults(func=_cmd_demos_generate)
     assets = sub.add_parser("assets", help="the object library").add_subparsers(
         dest="assets_command", required=True
     )
