@@ -205,6 +205,53 @@ def _cmd_demos_generate(args: argparse.Namespace) -> int:
     return 0
 
 
+def _load_policy(spec: str, obs_mode: str, control_mode: str):
+    """A reference policy name, ``ws://HOST:PORT`` or ``MODULE:CLASS``."""
+    import importlib
+
+    from instructmove_ms.policies import REFERENCE_POLICIES
+
+    if spec in REFERENCE_POLICIES:
+        return REFERENCE_POLICIES[spec]()
+    if spec.startswith(("ws://", "wss://")):
+        from instructmove_ms.remote import RemotePolicy
+
+        return RemotePolicy(spec, obs_mode=obs_mode, control_mode=control_mode)
+    module, _, name = spec.partition(":")
+    if not name:
+        raise ValueError(
+            f"unknown policy {spec!r}; allowed: {sorted(REFERENCE_POLICIES)}, "
+            "ws://HOST:PORT or MODULE:CLASS"
+        )
+    return getattr(importlib.import_module(module), name)()
+
+
+def _cmd_eval(args: argparse.Namespace) -> int:
+    from pathlib import Path
+
+    from instructmove_ms.episode import CONDITIONS
+    from instructmove_ms.evaluation import evaluate
+    from instructmove_ms.metrics import markdown_table
+
+    conditions = CONDITIONS if args.condition == "all" else (args.condition,)
+    policy = _load_policy(args.policy, args.obs_mode, args.control_mode)
+    rows = []
+    for condition in conditions:
+        out = Path(args.out) / condition if len(conditions) > 1 else Path(args.out)
+        summary = evaluate(
+            policy,
+            args.task,
+            args.split,
+            out,
+            robot=args.robot,
+            condition=condition,
+            episodes=args.episodes,
+        )
+        rows += summary["groups"]
+    print(markdown_table(rows))
+    return 0
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(prog="instructmove", description=__doc__)
     sub = parser.add_subparsers(dest="command", required=True)
@@ -243,6 +290,23 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--seed0", type=int, default=0, help="first training seed")
     p.add_argument("--workers", type=int, default=1, help="only 1 is supported")
     p.set_defaults(func=_cmd_demos_generate)
+    p = sub.add_parser("eval", help="evaluate a policy on a held-out set")
+    p.add_argument("--task", required=True, help="env id")
+    p.add_argument("--split", default="seen", help="seen, unseen_instance or unseen_category")
+    p.add_argument(
+        "--policy", required=True, help="oracle, blind, random, ws://HOST:PORT or MODULE:CLASS"
+    )
+    p.add_argument("--out", required=True, help="folder for the reports (resumable)")
+    p.add_argument("--robot", default=None, help="robot uid (default: the task's)")
+    p.add_argument(
+        "--condition",
+        default="normal",
+        help="instruction condition, or 'all' for the five counterfactual ones",
+    )
+    p.add_argument("--episodes", type=int, default=None, help="first N episodes of the set")
+    p.add_argument("--obs-mode", default="rgb", help="observation mode of a remote policy")
+    p.add_argument("--control-mode", default="pd_joint_pos", help="control mode of a remote policy")
+    p.set_defaults(func=_cmd_eval)
     assets = sub.add_parser("assets", help="the object library").add_subparsers(
         dest="assets_command", required=True
     )

@@ -65,6 +65,7 @@ def evaluate(
         obs_mode=policy.get_obs_mode(),
         control_mode=policy.get_control_mode(),
         render_backend="none",
+        split=split,
         condition=condition,
     )
     u = env.unwrapped

@@ -44,3 +44,25 @@ def test_bad_split_is_a_clear_error(capsys):
     assert main(["episode", "--split", "nope", "--no-render"]) == 2
     err = capsys.readouterr().err
     assert "'nope'" in err and "'unseen_instance'" in err
+
+
+def test_eval_writes_reports_and_rejects_unknown_policies(tmp_path, capsys):
+    out = tmp_path / "eval"
+    args = [
+        "eval",
+        "--task",
+        "PickCategory-InstructMove",
+        "--robot",
+        "franka",
+        "--policy",
+        "random",
+        "--episodes",
+        "1",
+        "--out",
+        str(out),
+    ]
+    assert main(args) == 0
+    assert "| pick_category | franka | seen | normal | 1 |" in capsys.readouterr().out
+    assert json.loads((out / "summary.json").read_text())["episodes"] == 1
+    assert main([*args[:5], "--policy", "nonsense", "--out", str(out)]) == 2
+    assert "'nonsense'" in capsys.readouterr().err
