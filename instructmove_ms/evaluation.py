@@ -23,6 +23,8 @@ from .metrics import EpisodeResult, aggregate, markdown_table, score_episode
 from .tasks import TASKS
 from .validation import check_choice
 
+STATE_MODES = ("state", "state_dict")  # observation modes that need no renderer
+
 
 def _atomic_write(path: Path, text: str) -> None:
     tmp = path.with_suffix(path.suffix + ".tmp")
@@ -64,7 +66,7 @@ def evaluate(
         robot_uids=robot,
         obs_mode=policy.get_obs_mode(),
         control_mode=policy.get_control_mode(),
-        render_backend="none",
+        **({"render_backend": "none"} if policy.get_obs_mode() in STATE_MODES else {}),
         split=split,
         condition=condition,
     )

@@ -24,12 +24,13 @@ MAX_WAYPOINT_STEPS = 90  # give up on a waypoint the arm cannot reach
 
 
 class RandomPolicy:
-    def __init__(self, seed: int = 0) -> None:
+    def __init__(self, seed: int = 0, obs_mode: str = "state") -> None:
         self.rng = np.random.default_rng(seed)
+        self.obs_mode = obs_mode
         self.space = None
 
     def get_obs_mode(self) -> str:
-        return "state"
+        return self.obs_mode
 
     def get_control_mode(self) -> str:
         return "pd_joint_delta_pos"

@@ -33,3 +33,15 @@ def test_oracle_beats_blind_and_reruns_are_identical(tmp_path):
     blind = evaluate(BlindPolicy(1), TASK, "seen", tmp_path / "c", robot="franka", episodes=4)
     assert oracle["groups"][0]["reach"] > blind["groups"][0]["reach"]
     assert oracle["groups"][0]["reach"] >= 0.75
+
+
+def test_visual_observations_reach_the_policy(tmp_path):
+    class Recorder(RandomPolicy):
+        def act(self, obs):
+            self.images.append(obs["sensor_data"]["static_camera"]["rgb"].shape)
+            return super().act(obs)
+
+    policy = Recorder(0, obs_mode="rgb")
+    policy.images = []
+    evaluate(policy, TASK, "seen", tmp_path, robot="piperx", episodes=1)
+    assert policy.images and policy.images[0] == (1, 90, 160, 3)
