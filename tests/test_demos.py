@@ -14,7 +14,7 @@ from instructmove_ms.cli import main
 from instructmove_ms.demos.generate import generate
 
 TASK, ROBOT = "PickCategory-InstructMove", "franka"
-STEM = f"{TASK}.{ROBOT}"
+STEM = f"{TASK}_{ROBOT}"
 
 
 @pytest.fixture(scope="module")

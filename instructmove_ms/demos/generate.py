@@ -6,7 +6,7 @@ is written into a temporary folder and moved into place, then the ledger
 ``<task>.<robot>.ledger.json`` (written atomically) records it with the next seed to try and
 the failure counts. A shard missing from the ledger is unfinished and gets rewritten, so an
 interruption loses at most one shard's work and never duplicates a demo. The finished shards
-are merged into ``out_dir/<task>.<robot>.h5`` + ``.json`` + ``.episodes.json``.
+are merged into ``out_dir/<task>_<robot>.h5`` + ``.json`` + ``.episodes.json``.
 """
 
 from __future__ import annotations
@@ -107,7 +107,7 @@ def generate(
     out = Path(out_dir)
     shards = out / "shards"
     shards.mkdir(parents=True, exist_ok=True)
-    stem = f"{task}.{robot}"
+    stem = f"{task}_{robot}"  # no dot: ManiSkill names replays after the first dot
     ledger_path = out / f"{stem}.ledger.json"
     ledger = (
         json.loads(ledger_path.read_text())
@@ -120,7 +120,7 @@ def generate(
     failures = Counter(ledger["failures"])
     with tqdm(total=n, initial=min(kept, n), desc=stem, unit="demo") as bar:
         while kept < n:
-            name = f"{stem}.{len(ledger['shards']):05d}"
+            name = f"{stem}_{len(ledger['shards']):05d}"
             with tempfile.TemporaryDirectory(dir=out) as tmp:
                 seed, episodes, new = _record_shard(
                     task, robot, Path(tmp), name, ledger["next_seed"], min(SHARD_SIZE, n - kept)
