@@ -20,6 +20,7 @@ from tqdm import tqdm
 
 from . import heldout
 from .metrics import EpisodeResult, aggregate, markdown_table, score_episode
+from .plots import grounding_attribution, stage_funnel
 from .tasks import TASKS
 from .validation import check_choice
 
@@ -96,7 +97,8 @@ def evaluate(
 
 
 def write_reports(out: Path, rows: list[dict]) -> dict:
-    """summary.json (rates with Wilson intervals), episodes.csv and report.md."""
+    """summary.json (rates with Wilson intervals), episodes.csv, report.md and its two
+    figures (stage funnel, grounding-error attribution)."""
     results = [
         EpisodeResult(
             **{**{k: v for k, v in r.items() if k != "episode_id"}, "shared": tuple(r["shared"])}
@@ -104,10 +106,14 @@ def write_reports(out: Path, rows: list[dict]) -> dict:
         for r in rows
     ]
     summary = {"groups": aggregate(results), "episodes": len(results)}
+    stage_funnel(summary["groups"], out / "stage_funnel.png")
+    grounding_attribution(results, out / "grounding_errors.png")
     _atomic_write(out / "summary.json", json.dumps(summary, indent=2))
     _atomic_write(
         out / "report.md",
-        "# InstructMove evaluation\n\n" + markdown_table(summary["groups"]) + "\n",
+        "# InstructMove evaluation\n\n"
+        + markdown_table(summary["groups"])
+        + "\n\n![stage funnel](stage_funnel.png)\n![grounding errors](grounding_errors.png)\n",
     )
     with (out / "episodes.csv.tmp").open("w", newline="") as f:
         writer = csv.DictWriter(f, fieldnames=list(rows[0]) if rows else ["episode_id"])

@@ -13,7 +13,14 @@ TASK = "PickCategory-InstructMove"
 def test_reports_and_resume(tmp_path):
     summary = evaluate(RandomPolicy(0), TASK, "seen", tmp_path, robot="franka", episodes=2)
     assert summary["episodes"] == 2
-    for name in ("summary.json", "report.md", "episodes.csv", "episodes.jsonl"):
+    for name in (
+        "summary.json",
+        "report.md",
+        "episodes.csv",
+        "episodes.jsonl",
+        "stage_funnel.png",
+        "grounding_errors.png",
+    ):
         assert (tmp_path / name).is_file()
     (group,) = json.loads((tmp_path / "summary.json").read_text())["groups"]
     assert 0.0 <= group["reach"] <= 1.0 and len(group["success_ci"]) == 2
