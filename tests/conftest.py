@@ -22,3 +22,33 @@ def state_env():
     env = make_env()
     yield env
     env.close()
+
+
+def hand_spec(placed, robot: str, robot_qpos, target: int = 0):
+    """A hand-made PickCategory episode: ``placed`` lists (category, pose) with the pose as
+    (x, y) or a full (x, y, z, qw, qx, qy, qz); the first instance of each category is used."""
+    from instructmove_ms.assets import load_snapshot
+    from instructmove_ms.episode import EpisodeSpec, ObjectSpec
+
+    catalog = load_snapshot()
+    objects = tuple(
+        ObjectSpec(
+            catalog.of_category(cat)[0].uuid,
+            cat,
+            "target" if k == target else "distractor",
+            tuple(pose) if len(pose) == 7 else (*pose, 0.002, 1.0, 0.0, 0.0, 0.0),
+        )
+        for k, (cat, pose) in enumerate(placed)
+    )
+    return EpisodeSpec(
+        family="pick_category",
+        robot=robot,
+        snapshot="default",
+        split="train",
+        seed=0,
+        instruction=f"pick up the {objects[target].category.replace('_', ' ')}",
+        objects=objects,
+        target=target,
+        candidates=tuple(range(len(objects))),
+        robot_qpos=tuple(float(q) for q in robot_qpos),
+    )

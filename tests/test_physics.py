@@ -5,9 +5,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from conftest import make_env
-from instructmove_ms.assets import load_snapshot
-from instructmove_ms.episode import EpisodeSpec, ObjectSpec
+from conftest import hand_spec, make_env
+from instructmove_ms.episode import EpisodeSpec
 from instructmove_ms.scripted import CLOSED, OPEN, hold
 from instructmove_ms.scripted import servo as move_to
 
@@ -22,29 +21,11 @@ LAYOUT = [  # category, x, y (robot frame)
 
 
 def _spec(target: int) -> EpisodeSpec:
-    catalog = load_snapshot()
-    objects = []
-    for k, (cat, x, y) in enumerate(LAYOUT):
-        inst = catalog.of_category(cat)[0]
-        objects.append(
-            ObjectSpec(
-                inst.uuid,
-                cat,
-                "target" if k == target else "distractor",
-                (x, y, 0.002, 1.0, 0.0, 0.0, 0.0),
-            )
-        )
-    return EpisodeSpec(
-        family="pick_category",
-        robot="franka",
-        snapshot="default",
-        split="train",
-        seed=0,
-        instruction=f"pick up the {objects[target].category}",
-        objects=tuple(objects),
-        target=target,
-        candidates=tuple(range(len(objects))),
-        robot_qpos=(0.0, -0.569, 0.0, -1.97, 0.0, 1.5, 0.741, 0.04, 0.04),
+    return hand_spec(
+        [(cat, (x, y)) for cat, x, y in LAYOUT],
+        "franka",
+        (0.0, -0.569, 0.0, -1.97, 0.0, 1.5, 0.741, 0.04, 0.04),
+        target,
     )
 
 

@@ -14,10 +14,9 @@ import torch
 from mani_skill.trajectory import replay_trajectory as replay
 from mani_skill.utils.wrappers import RecordEpisode
 
-from conftest import make_env
+from conftest import hand_spec, make_env
 from instructmove_ms.agents.piperx import joint_order, rest_qpos
-from instructmove_ms.assets import load_snapshot
-from instructmove_ms.episode import EpisodeSpec, ObjectSpec
+from instructmove_ms.episode import EpisodeSpec
 
 SIDES = ("left", "right")
 BASE_Y = {"left": 0.3, "right": -0.3}
@@ -224,22 +223,10 @@ def test_workspace_is_reachable_by_one_arm(kin):
 
 def _spec(category: str, side: str) -> EpisodeSpec:
     """One object in front of ``side``'s arm, its long axis radial (closing across it)."""
-    inst = load_snapshot().of_category(category)[0]
     x, y = 0.36, math.copysign(0.13, BASE_Y[side])
     yaw = math.atan2(y - BASE_Y[side], x)
     pose = (x, y, 0.002, math.cos(yaw / 2), 0.0, 0.0, math.sin(yaw / 2))
-    return EpisodeSpec(
-        family="pick_category",
-        robot="piperx",
-        snapshot="default",
-        split="train",
-        seed=0,
-        instruction=f"pick up the {category}",
-        objects=(ObjectSpec(inst.uuid, category, "target", pose),),
-        target=0,
-        candidates=(0,),
-        robot_qpos=tuple(float(q) for q in rest_qpos(SIDES)),
-    )
+    return hand_spec([(category, pose)], "piperx", rest_qpos(SIDES))
 
 
 def _act(env, kin: Kinematics, q: np.ndarray, grippers: dict) -> dict:

@@ -8,10 +8,9 @@ import pytest
 import sapien
 import torch
 
-from conftest import make_env
-from instructmove_ms.assets import load_snapshot
+from conftest import hand_spec, make_env
 from instructmove_ms.assets.affordances import grasp_affordances
-from instructmove_ms.episode import EpisodeSpec, ObjectSpec
+from instructmove_ms.episode import EpisodeSpec
 from instructmove_ms.planning import (
     ArmKinematics,
     CollisionWorld,
@@ -34,28 +33,7 @@ LAYOUT = [  # category, x, y (robot frame)
 
 
 def _spec() -> EpisodeSpec:
-    catalog = load_snapshot()
-    objects = tuple(
-        ObjectSpec(
-            catalog.of_category(cat)[0].uuid,
-            cat,
-            "target" if k == 0 else "distractor",
-            (x, y, 0.002, 1.0, 0.0, 0.0, 0.0),
-        )
-        for k, (cat, x, y) in enumerate(LAYOUT)
-    )
-    return EpisodeSpec(
-        family="pick_category",
-        robot="franka",
-        snapshot="default",
-        split="train",
-        seed=0,
-        instruction="pick up the canned_coke",
-        objects=objects,
-        target=0,
-        candidates=tuple(range(len(objects))),
-        robot_qpos=REST,
-    )
+    return hand_spec([(cat, (x, y)) for cat, x, y in LAYOUT], "franka", REST)
 
 
 @pytest.fixture(scope="module")

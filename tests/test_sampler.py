@@ -7,7 +7,6 @@ import pytest
 from instructmove_ms.assets import load_snapshot
 from instructmove_ms.assets.catalog import Catalog, generate_instance
 from instructmove_ms.sampler import (
-    EACH_OTHER,
     Constraint,
     RoleError,
     RoleSpec,
@@ -15,6 +14,7 @@ from instructmove_ms.sampler import (
     split_of,
     split_pools,
 )
+from instructmove_ms.tasks import PICK_CATEGORY
 
 ROLES = (
     RoleSpec("target", 1, pool="target"),
@@ -51,17 +51,7 @@ def test_constraints_hold_and_draws_are_seeded():
 
 def test_adding_assets_does_not_change_existing_assignments():
     catalog = load_snapshot()
-    roles = (
-        RoleSpec("target", 1, pool="target"),
-        RoleSpec(
-            "distractor",
-            5,
-            constraints=(
-                Constraint("category", "differ", "target"),
-                Constraint("category", "differ", EACH_OTHER),
-            ),
-        ),
-    )
+    roles = PICK_CATEGORY.roles  # the shipped family's declared roles
     before = {s: resolve_roles(roles, catalog, "unseen_category", s) for s in range(30)}
     # the same snapshot listed in another order, with more instances of its categories
     extra = [generate_instance(c, 10 + k) for c in catalog.categories[:4] for k in range(2)]
