@@ -229,19 +229,19 @@ class InstructMoveEnv(BaseEnv):
             grasped[:, k] = self.agent.is_grasping(self.objects[k])
         return grasped
 
-    def _goal_frame(self, points: torch.Tensor) -> torch.Tensor:
-        """``points`` (N, 3) in the goal receptacle's frame, relative to its floor centre."""
-        pos, quat = self._object_poses()
+    def _goal_frame(self, points: torch.Tensor, pos: torch.Tensor, quat: torch.Tensor):
+        """``points`` (N, 3) in the goal receptacle's frame, relative to its floor centre;
+        ``pos``, ``quat`` are the objects' poses of this step."""
         rows = torch.arange(self.num_envs, device=self.device)
         g = self._goal.clamp(min=0)
         rel = points - pos[rows, g]
         return quaternion_apply(quaternion_invert(quat[rows, g]), rel) - self._goal_center
 
-    def _place_flags(self, pos: torch.Tensor, grasped: torch.Tensor):
+    def _place_flags(self, pos: torch.Tensor, quat: torch.Tensor, grasped: torch.Tensor):
         """(over the goal interior, resting on its floor and released) for the target."""
         rows = torch.arange(self.num_envs, device=self.device)
         t = self._target.clamp(min=0)
-        local = self._goal_frame(pos[rows, t])
+        local = self._goal_frame(pos[rows, t], pos, quat)
         over = (self._goal >= 0) & (local[:, :2].abs() <= self._goal_half).all(dim=1)
         speed = torch.stack([o.linear_velocity for o in self.objects], dim=1)[rows, t]
         th = self.task.thresholds
@@ -262,7 +262,7 @@ class InstructMoveEnv(BaseEnv):
             watch[torch.arange(self.num_envs, device=self.device), self._target.clamp(min=0)] = True
         grasped = self._grasped(watch)
         over, placed = (
-            self._place_flags(pos, grasped)
+            self._place_flags(pos, quat, grasped)
             if self.task.is_place
             else (torch.zeros_like(self._target, dtype=torch.bool),) * 2
         )
@@ -313,7 +313,7 @@ class InstructMoveEnv(BaseEnv):
         maximum; episodes without a target get 0."""
         rows = torch.arange(self.num_envs, device=self.device)
         t = self._target.clamp(min=0)
-        pos, _ = self._object_poses()
+        pos, quat = self._object_poses()
         rise = pos[rows, t, 2] - self._z0[rows, t]
         grasped = torch.zeros(self.num_envs, dtype=torch.bool, device=self.device)
         for k in torch.unique(t).tolist():
@@ -322,7 +322,7 @@ class InstructMoveEnv(BaseEnv):
         lifted = (rise / self.task.thresholds.lift).clamp(0, 1)
         reward = reward + grasped.float() * (1.0 + 2.0 * lifted)
         if self.task.is_place:
-            away = torch.linalg.norm(self._goal_frame(pos[rows, t])[:, :2], dim=1)
+            away = torch.linalg.norm(self._goal_frame(pos[rows, t], pos, quat)[:, :2], dim=1)
             reward = reward + lifted * grasped.float() * 2.0 * (1.0 - torch.tanh(5.0 * away))
             reward = reward + info["reach_place"].float() * (~grasped).float()
         reward = torch.where(self._target >= 0, reward, torch.zeros_like(reward))
