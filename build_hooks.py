@@ -10,7 +10,13 @@ from pathlib import Path
 from setuptools.command.build_py import build_py
 
 PTH_NAME = "instructmove_ms.pth"
-PTH_LINE = "import instructmove_ms_autoload; instructmove_ms_autoload.install()\n"
+# One line (site.py runs .pth lines that start with "import"); silent when the package was
+# removed without pip (e.g. a deleted editable checkout) instead of failing every start-up.
+PTH_LINE = (
+    "import importlib.util as _u; "
+    "_u.find_spec('instructmove_ms_autoload') and "
+    "__import__('instructmove_ms_autoload').install()\n"
+)
 
 
 class BuildPyWithPth(build_py):
