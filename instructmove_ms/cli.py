@@ -198,7 +198,9 @@ def _cmd_demos_generate(args: argparse.Namespace) -> int:
     import instructmove_ms  # noqa: F401  (registration)
     from instructmove_ms.demos.generate import generate
 
-    report = generate(args.task, args.robot, args.n, args.out, args.seed0, args.workers)
+    report = generate(
+        args.task, args.robot, args.n, args.out, args.seed0, args.workers, args.shard_size
+    )
     print(f"{report.kept} demos from {report.tried} seeds: valid-synthesis rate {report.rate:.1%}")
     print("failures: " + ", ".join(f"{k}={v}" for k, v in report.failures.items()))
     print(f"-> {report.path}")
@@ -282,13 +284,14 @@ def build_parser() -> argparse.ArgumentParser:
     demos = sub.add_parser("demos", help="planned demonstrations").add_subparsers(
         dest="demos_command", required=True
     )
-    p = demos.add_parser("generate", help="record successful planned picks (resumable)")
+    p = demos.add_parser("generate", help="record successful planned demos (resumable)")
     p.add_argument("--task", default="PickCategory-InstructMove")
     p.add_argument("--robot", default="franka")
     p.add_argument("-n", type=int, default=100, help="demos to keep")
     p.add_argument("--out", default="out/demos", help="output folder")
     p.add_argument("--seed0", type=int, default=0, help="first training seed")
-    p.add_argument("--workers", type=int, default=1, help="only 1 is supported")
+    p.add_argument("--workers", type=int, default=1, help="parallel processes")
+    p.add_argument("--shard-size", type=int, default=5, help="demos per resumable shard")
     p.set_defaults(func=_cmd_demos_generate)
     p = sub.add_parser("eval", help="evaluate a policy on a held-out set")
     p.add_argument("--task", required=True, help="env id")

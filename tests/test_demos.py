@@ -1,4 +1,5 @@
-"""Demo synthesis: planned PickCategory demos, recorded, replayed by ManiSkill and resumed."""
+"""Demo synthesis: planned PickCategory demos recorded by parallel workers, replayed by
+ManiSkill, interrupted and resumed."""
 
 from __future__ import annotations
 
@@ -11,7 +12,8 @@ import h5py
 import pytest
 
 from instructmove_ms.cli import main
-from instructmove_ms.demos.generate import generate
+from instructmove_ms.demos import generate as generator
+from instructmove_ms.demos.generate import SEED_BLOCK, generate
 
 TASK, ROBOT = "PickCategory-InstructMove", "franka"
 STEM = f"{TASK}_{ROBOT}"
@@ -20,7 +22,7 @@ STEM = f"{TASK}_{ROBOT}"
 @pytest.fixture(scope="module")
 def demos(tmp_path_factory):
     out = tmp_path_factory.mktemp("demos")
-    report = generate(TASK, ROBOT, 2, out)
+    report = generate(TASK, ROBOT, 2, out, workers=2, shard_size=1)  # two spawned workers
     return out, report
 
 
@@ -33,6 +35,8 @@ def test_generate_records_successful_demos(demos):
     assert report.kept == 2 and report.tried >= 2
     episodes = _episodes(out)
     assert len(episodes) == 2 and all(e["success"] for e in episodes)
+    seeds = [e["reset_kwargs"]["seed"] for e in episodes]
+    assert seeds[0] < SEED_BLOCK <= seeds[1] < 2 * SEED_BLOCK  # shard k owns its seed block
     with h5py.File(out / f"{STEM}.h5") as f:
         assert all(bool(f[f"traj_{k}/success"][-1]) for k in range(2))
     sidecar = json.loads((out / f"{STEM}.episodes.json").read_text())
@@ -59,17 +63,45 @@ def test_replay_reproduces_success(demos):
     assert "Replayed 2 episodes, 2/2=100.00% demos saved" in result.stdout + result.stderr
 
 
-def test_resume_extends_without_duplicates(demos, tmp_path, capsys):
+def test_interrupted_run_resumes_to_exactly_n(demos, tmp_path, monkeypatch, capsys):
     out, _ = demos
     shutil.copytree(out / "shards", tmp_path / "shards")  # the first run's finished work
     shutil.copy(out / f"{STEM}.ledger.json", tmp_path)
+    real = generator.synthesizer(TASK)
+    calls = []
+
+    def interrupt_second(env):
+        calls.append(1)
+        if len(calls) == 2:
+            raise KeyboardInterrupt  # Ctrl-C while the fourth demo is being planned
+        return real(env)
+
+    monkeypatch.setattr(generator, "synthesizer", lambda task: interrupt_second)
+    with pytest.raises(KeyboardInterrupt):
+        generate(TASK, ROBOT, 4, tmp_path, shard_size=1)
+    ledger = json.loads((tmp_path / f"{STEM}.ledger.json").read_text())
+    assert [s["index"] for s in ledger["shards"]] == [0, 1, 2]
+    assert sorted(p.name for p in tmp_path.iterdir()) == [f"{STEM}.ledger.json", "shards"]
+    monkeypatch.undo()
+    argv = ["demos", "generate", "--task", TASK, "--robot", ROBOT, "-n", "4"]
+    assert main([*argv, "--out", str(tmp_path)]) == 2
+    assert "was started with shard_size=1, not 5" in capsys.readouterr().err
+    assert generate(TASK, ROBOT, 4, tmp_path, shard_size=1).kept == 4
     first = [e["reset_kwargs"]["seed"] for e in _episodes(out)]
-    argv = ["demos", "generate", "--task", TASK, "--robot", ROBOT, "-n", "3"]
-    assert main([*argv, "--out", str(tmp_path)]) == 0
-    assert "valid-synthesis rate" in capsys.readouterr().out
     episodes = _episodes(tmp_path)
     seeds = [e["reset_kwargs"]["seed"] for e in episodes]
-    assert len(episodes) == 3 and seeds[:2] == first and len(set(seeds)) == 3
+    assert len(episodes) == 4 and seeds[:2] == first and len(set(seeds)) == 4
     with h5py.File(out / f"{STEM}.h5") as a, h5py.File(tmp_path / f"{STEM}.h5") as b:
         for k in range(2):
             assert (a[f"traj_{k}/actions"][:] == b[f"traj_{k}/actions"][:]).all()
+
+
+def test_cli_reports_rate_and_rejects_bad_input(demos, capsys):
+    out, _ = demos
+    argv = ["demos", "generate", "--task", TASK, "--robot", ROBOT, "--out", str(out)]
+    assert main([*argv, "-n", "2"]) == 2
+    assert "was started with shard_size=1" in capsys.readouterr().err
+    assert main([*argv, "-n", "2", "--shard-size", "1"]) == 0  # finished already: merge only
+    assert "2 demos from" in capsys.readouterr().out
+    assert main(["demos", "generate", "--robot", "ur5", "--out", str(out)]) == 2
+    assert "unknown robot 'ur5'; allowed: 'franka', 'piperx'" in capsys.readouterr().err

@@ -1,21 +1,28 @@
-"""Resumable demo generation: planned picks recorded with ManiSkill's ``RecordEpisode``.
+"""Resumable, parallel demo generation: planned rollouts recorded with ManiSkill's
+``RecordEpisode``.
 
-Demos go into shards under ``out_dir/shards/``: each shard (trajectory ``.h5`` + ``.json`` and
-a sidecar ``.episodes.json`` with every kept episode's EpisodeSpec and per-step stage flags)
-is written into a temporary folder and moved into place, then the ledger
-``<task>.<robot>.ledger.json`` (written atomically) records it with the next seed to try and
-the failure counts. A shard missing from the ledger is unfinished and gets rewritten, so an
-interruption loses at most one shard's work and never duplicates a demo. The finished shards
-are merged into ``out_dir/<task>_<robot>.h5`` + ``.json`` + ``.episodes.json``.
+Demos go into shards under ``out_dir/shards/``. Shard ``i`` tries the seeds
+``seed0 + i * SEED_BLOCK`` onwards until it has kept its share of demos, so its content does
+not depend on how many workers run or in which order shards finish. A shard (trajectory
+``.h5`` + ``.json`` and a sidecar ``.episodes.json`` with every kept episode's EpisodeSpec and
+per-step stage flags) is written into a temporary folder and moved into place; then the
+ledger ``<task>_<robot>.ledger.json`` (written atomically) records it with its seed and
+failure counts. A shard missing from the ledger is unfinished and is redone, so an
+interruption loses at most the shards in flight and never duplicates a demo. The finished
+shards are merged into ``out_dir/<task>_<robot>.h5`` + ``.json`` + ``.episodes.json``.
 """
 
 from __future__ import annotations
 
 import json
+import multiprocessing as mp
 import os
 import tempfile
+import threading
 from collections import Counter
+from collections.abc import Callable
 from dataclasses import dataclass, field
+from functools import partial
 from pathlib import Path
 
 import gymnasium as gym
@@ -23,11 +30,17 @@ from mani_skill.trajectory.merge_trajectory import merge_trajectories
 from mani_skill.utils.wrappers import RecordEpisode
 from tqdm import tqdm
 
-from instructmove_ms.demos.pick import PICK_TASKS, plan_pick, rollout
+from instructmove_ms.tasks import TASKS
+from instructmove_ms.validation import check_choice
+
+from .synthesis import FAILURES, synthesizer
 
 TRAIN_SEEDS = 10**9  # training seeds lie below this (evaluation sets use others)
-SHARD_SIZE = 10  # kept demos per shard
-FAILURES = ("no_ik", "no_plan", "grasp_slipped")
+SHARD_SIZE = 5  # kept demos per shard
+SEED_BLOCK = 1000  # seeds reserved for each shard
+_DONE = "done"  # ends the progress queue
+
+Progress = Callable[[str | None], None]  # called per seed tried: None (kept) or the failure
 
 
 @dataclass
@@ -45,6 +58,19 @@ class Report:
         return self.kept / max(1, self.tried)
 
 
+@dataclass(frozen=True)
+class Job:
+    """One shard to record: its index and name, the first seed and how many demos to keep."""
+
+    task: str
+    robot: str
+    out: Path
+    index: int
+    name: str
+    seed: int
+    want: int
+
+
 def _write_json(path: Path, data) -> None:
     """Write ``data`` as JSON atomically (a temporary file renamed over ``path``)."""
     tmp = path.with_suffix(path.suffix + ".tmp")
@@ -52,92 +78,176 @@ def _write_json(path: Path, data) -> None:
     os.replace(tmp, path)
 
 
-def _record_shard(task: str, robot: str, folder: Path, name: str, seed: int, want: int):
-    """Try seeds from ``seed`` on until ``want`` demos are kept, recording them into
-    ``folder/name.h5``; returns (next seed, sidecar entries, failure counts)."""
+def _record(job: Job, folder: Path, progress: Progress) -> tuple[list[dict], Counter[str]]:
+    """Try the job's seeds until it has kept ``job.want`` demos, recording them into
+    ``folder/<job.name>.h5``; returns the sidecar entries and the failure counts."""
     env = gym.make(
-        task,
-        robot_uids=robot,
+        job.task,
+        robot_uids=job.robot,
         obs_mode="state",
         control_mode="pd_joint_pos",
-        render_backend="cpu",
+        render_backend="cpu",  # recorded into env_kwargs: replay to visual modes needs it
     )
     env = RecordEpisode(
         env,
         str(folder),
-        trajectory_name=name,
+        trajectory_name=job.name,
         save_video=False,
         save_on_reset=False,
         source_type="motion_planning",
-        source_desc="instructmove_ms.demos: OMPL pick plans (fcl collision checks)",
+        source_desc="instructmove_ms.demos: OMPL plans checked with fcl, run with pd_joint_pos",
     )
+    synthesize = synthesizer(job.task)
     episodes: list[dict] = []
     failures: Counter[str] = Counter()
     try:
-        while len(episodes) < want:
-            if seed >= TRAIN_SEEDS:
-                raise ValueError(f"ran out of training seeds (below {TRAIN_SEEDS})")
+        for seed in range(job.seed, job.seed + SEED_BLOCK):
+            if len(episodes) == job.want:
+                break
             env.reset(seed=seed)
-            actions = plan_pick(env)
-            flags = [] if isinstance(actions, str) else rollout(env, actions)
-            if flags and flags[-1]["success"]:
+            flags, failure = synthesize(env)
+            if failure is None:
                 env.flush_trajectory()
-                spec = env.unwrapped.episode.to_dict()
                 stages = {k: [f[k] for f in flags] for k in flags[0]}
+                spec = env.unwrapped.episode.to_dict()
                 episodes.append({"seed": seed, "spec": spec, "stages": stages})
             else:
-                failures[actions if isinstance(actions, str) else "grasp_slipped"] += 1
+                failures[failure] += 1
                 if flags:
                     env.flush_trajectory(save=False)
-            seed += 1
+            progress(failure)
+        else:
+            raise RuntimeError(
+                f"{job.task} with {job.robot}: only {len(episodes)} of {job.want} demos from "
+                f"{SEED_BLOCK} seeds ({dict(failures)}); synthesis fails too often"
+            )
     finally:
         env.close()
-    return seed, episodes, failures
+    return episodes, failures
+
+
+def run_job(job: Job, progress: Progress) -> dict:
+    """Record one shard atomically into ``job.out/shards``; returns its ledger entry."""
+    shards = job.out / "shards"
+    with tempfile.TemporaryDirectory(dir=job.out) as tmp:
+        episodes, failures = _record(job, Path(tmp), progress)
+        _write_json(Path(tmp) / f"{job.name}.episodes.json", episodes)
+        for suffix in (".h5", ".json", ".episodes.json"):
+            os.replace(Path(tmp) / f"{job.name}{suffix}", shards / f"{job.name}{suffix}")
+    tried = len(episodes) + sum(failures.values())
+    return {
+        "index": job.index,
+        "name": job.name,
+        "kept": len(episodes),
+        "tried": tried,
+        "failures": dict(failures),
+    }
+
+
+def _worker(job: Job, queue) -> dict:
+    """Pool entry point: ``run_job`` reporting each seed through a manager queue."""
+    return run_job(job, queue.put)
+
+
+def _pending(ledger: dict, task: str, robot: str, out: Path, n: int) -> list[Job]:
+    """The shards still to record for ``n`` demos: the lowest free indices, in order."""
+    size = ledger["shard_size"]
+    done = {s["index"] for s in ledger["shards"]}
+    remaining = n - sum(s["kept"] for s in ledger["shards"])
+    jobs, index = [], 0
+    while remaining > 0:
+        if index not in done:
+            want = min(size, remaining)
+            seed = ledger["seed0"] + index * SEED_BLOCK
+            if seed + SEED_BLOCK > TRAIN_SEEDS:
+                raise ValueError(f"ran out of training seeds (below {TRAIN_SEEDS})")
+            name = f"{task}_{robot}_{index:05d}"
+            jobs.append(Job(task, robot, out, index, name, seed, want))
+            remaining -= want
+        index += 1
+    return jobs
 
 
 def generate(
-    task: str, robot: str, n: int, out_dir: str | Path, seed0: int = 0, workers: int = 1
+    task: str,
+    robot: str,
+    n: int,
+    out_dir: str | Path,
+    seed0: int = 0,
+    workers: int = 1,
+    shard_size: int = SHARD_SIZE,
 ) -> Report:
-    """Write ``n`` successful pick demos of ``task`` with ``robot`` into ``out_dir`` (see the
-    module docstring), resuming from its ledger. Only ``workers=1`` is supported."""
-    if task not in PICK_TASKS:
-        raise ValueError(f"demo synthesis supports {', '.join(PICK_TASKS)}, not {task!r}")
-    if workers != 1:
-        raise ValueError("only workers=1 is supported")
+    """Write ``n`` successful demos of ``task`` with ``robot`` into ``out_dir`` (see the module
+    docstring) with ``workers`` processes, ``shard_size`` demos per shard, resuming from its
+    ledger (which fixes ``seed0`` and ``shard_size``)."""
+    check_choice("task", task, TASKS)
+    check_choice("robot", robot, TASKS[task].supported_robots)
+    for name, value in (("n", n), ("workers", workers), ("shard_size", shard_size)):
+        if value < 1:
+            raise ValueError(f"{name} must be at least 1, got {value}")
     out = Path(out_dir)
-    shards = out / "shards"
-    shards.mkdir(parents=True, exist_ok=True)
+    (out / "shards").mkdir(parents=True, exist_ok=True)
     stem = f"{task}_{robot}"  # no dot: ManiSkill names replays after the first dot
     ledger_path = out / f"{stem}.ledger.json"
     ledger = (
         json.loads(ledger_path.read_text())
         if ledger_path.exists()
-        else {"seed0": seed0, "next_seed": seed0, "shards": [], "failures": {}}
+        else {"seed0": seed0, "shard_size": shard_size, "shards": []}
     )
-    if ledger["seed0"] != seed0:
-        raise ValueError(f"{ledger_path} began at seed {ledger['seed0']}, not {seed0}")
+    for key, value in (("seed0", seed0), ("shard_size", shard_size)):
+        if ledger[key] != value:
+            raise ValueError(f"{ledger_path} was started with {key}={ledger[key]}, not {value}")
+    jobs = _pending(ledger, task, robot, out, n)
     kept = sum(s["kept"] for s in ledger["shards"])
-    failures = Counter(ledger["failures"])
-    with tqdm(total=n, initial=min(kept, n), desc=stem, unit="demo") as bar:
-        while kept < n:
-            name = f"{stem}_{len(ledger['shards']):05d}"
-            with tempfile.TemporaryDirectory(dir=out) as tmp:
-                seed, episodes, new = _record_shard(
-                    task, robot, Path(tmp), name, ledger["next_seed"], min(SHARD_SIZE, n - kept)
-                )
-                _write_json(Path(tmp) / f"{name}.episodes.json", episodes)
-                for suffix in (".h5", ".json", ".episodes.json"):
-                    os.replace(Path(tmp) / f"{name}{suffix}", shards / f"{name}{suffix}")
-            failures.update(new)
-            kept += len(episodes)
-            ledger["shards"].append({"name": name, "kept": len(episodes)})
-            ledger.update(next_seed=seed, failures=dict(failures))
+    with tqdm(total=n, initial=kept, desc=stem, unit="demo") as bar:
+        tried = Counter()
+
+        def tick(failure: str | None) -> None:
+            tried[failure is None] += 1
+            bar.update(failure is None)
+            bar.set_postfix(rate=f"{tried[True] / sum(tried.values()):.0%}")
+
+        def finished(entry: dict) -> None:
+            ledger["shards"].append(entry)
+            ledger["shards"].sort(key=lambda s: s["index"])
             _write_json(ledger_path, ledger)
-            bar.update(len(episodes))
-            bar.set_postfix(rate=f"{kept / max(1, seed - seed0):.0%}")
+
+        _run(jobs, workers, tick, finished)
     path = _merge(out, stem, [s["name"] for s in ledger["shards"]])
-    tried = ledger["next_seed"] - seed0
-    return Report(kept, tried, {k: failures.get(k, 0) for k in FAILURES}, path)
+    failures = Counter()
+    for shard in ledger["shards"]:
+        failures.update(shard["failures"])
+    return Report(
+        sum(s["kept"] for s in ledger["shards"]),
+        sum(s["tried"] for s in ledger["shards"]),
+        {k: failures.get(k, 0) for k in FAILURES},
+        path,
+    )
+
+
+def _run(jobs: list[Job], workers: int, tick: Progress, finished: Callable[[dict], None]):
+    """Run the jobs in this process (one worker) or in a pool of spawned processes, calling
+    ``tick`` per seed tried and ``finished`` per shard recorded, in this process."""
+    if workers == 1 or len(jobs) <= 1:
+        for job in jobs:
+            finished(run_job(job, tick))
+        return
+    ctx = mp.get_context("spawn")  # SAPIEN and torch do not survive fork
+    with ctx.Manager() as manager, ctx.Pool(min(workers, len(jobs))) as pool:
+        queue = manager.Queue()
+        listener = threading.Thread(target=_drain, args=(queue, tick), daemon=True)
+        listener.start()
+        try:
+            for entry in pool.imap_unordered(partial(_worker, queue=queue), jobs):
+                finished(entry)  # ledger updated as each shard lands
+        finally:
+            queue.put(_DONE)
+            listener.join()
+
+
+def _drain(queue, tick: Progress) -> None:
+    while (item := queue.get()) != _DONE:
+        tick(item)
 
 
 def _merge(out: Path, stem: str, names: list[str]) -> Path:
