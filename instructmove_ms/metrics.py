@@ -160,3 +160,24 @@ def markdown_table(
         ]
         lines.append("| " + " | ".join(cells) + " |")
     return "\n".join(lines)
+
+
+def comparison_table(
+    runs: dict[str, list[dict]], keys: tuple[str, ...] = ("family", "robot", "split", "condition")
+) -> str:
+    """Several policies side by side: one row per group of ``keys``, one ``Reach/Lift (S)``
+    column per policy (``runs`` maps a policy name to its aggregate rows), and chance
+    (1/|G|, what a policy that ignores the instruction reaches)."""
+    cells: dict[tuple, dict[str, str]] = {}
+    chance: dict[tuple, float] = {}
+    for policy, rows in runs.items():
+        for row in rows:
+            key = tuple(row[k] for k in keys)
+            cells.setdefault(key, {})[policy] = paper_cell(row)
+            chance[key] = row["chance"]
+    head = (*keys, *runs, "chance 1/|G|")
+    lines = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
+    for key in sorted(cells):
+        row = [*map(str, key), *(cells[key].get(p, "-") for p in runs), f"{chance[key]:.2f}"]
+        lines.append("| " + " | ".join(row) + " |")
+    return "\n".join(lines)

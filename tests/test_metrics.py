@@ -9,7 +9,13 @@ import torch
 
 import instructmove_ms  # noqa: F401
 from instructmove_ms import scripted
-from instructmove_ms.metrics import aggregate, markdown_table, score_episode, wilson
+from instructmove_ms.metrics import (
+    aggregate,
+    comparison_table,
+    markdown_table,
+    score_episode,
+    wilson,
+)
 
 
 def test_wilson_interval_matches_known_values():
@@ -71,6 +77,10 @@ def test_grounding_and_control_errors_are_told_apart(attribute_spec):
     assert rows[0]["reach"] == pytest.approx(2 / 3) and rows[0]["success"] == pytest.approx(1 / 3)
     assert rows[0]["chance"] == pytest.approx(1 / spec.num_goals)
     assert "0.67/0.33 (0.50)" in markdown_table(rows)
+    side_by_side = comparison_table({"oracle": rows, "blind": aggregate([grounding])})
+    header, _, line = side_by_side.splitlines()
+    assert header.split(" | ")[-3:] == ["oracle", "blind", "chance 1/|G| |"]
+    assert "| 0.67/0.33 (0.50) | 0.00/0.00 (0.00) | " in line
 
 
 def test_live_oracle_reach_scores_as_control_errors():
