@@ -207,6 +207,18 @@ def _cmd_demos_generate(args: argparse.Namespace) -> int:
     return 0
 
 
+def _cmd_export_mcap(args: argparse.Namespace) -> int:
+    from instructmove_ms.export import ExportSettings, export_trajectory
+
+    settings = ExportSettings(args.width, args.height, args.jpeg_quality)
+    report = export_trajectory(args.traj, args.out, args.workers, settings)
+    print(
+        f"{len(report.written)} episodes written ({report.bytes / 1e6:.1f} MB in "
+        f"{report.seconds:.0f} s), {len(report.skipped)} already there -> {args.out}"
+    )
+    return 0
+
+
 def _load_policy(spec: str, obs_mode: str, control_mode: str):
     """A reference policy name, ``ws://HOST:PORT`` or ``MODULE:CLASS``."""
     import importlib
@@ -228,27 +240,53 @@ def _load_policy(spec: str, obs_mode: str, control_mode: str):
     return getattr(importlib.import_module(module), name)()
 
 
+def _eval_configs(args: argparse.Namespace):
+    """(output folder, evaluator config) of each evaluation the arguments ask for."""
+    import dataclasses
+    from pathlib import Path
+
+    from instructmove_ms import heldout
+    from instructmove_ms.episode import CONDITIONS
+
+    if args.config:
+        config = heldout.EvaluatorConfig.load(Path(args.config))
+        yield Path(args.out), dataclasses.replace(config, episodes=config.episodes[: args.episodes])
+        return
+    conditions = CONDITIONS if args.condition == "all" else (args.condition,)
+    for condition in conditions:
+        out = Path(args.out) / condition if len(conditions) > 1 else Path(args.out)
+        yield (
+            out,
+            heldout.evaluator_config(args.task, args.robot, args.split, condition, args.episodes),
+        )
+
+
 def _cmd_eval(args: argparse.Namespace) -> int:
     from pathlib import Path
 
-    from instructmove_ms.episode import CONDITIONS
-    from instructmove_ms.evaluation import evaluate
+    from instructmove_ms import heldout
+    from instructmove_ms.evaluation import check_backend, evaluate_config
     from instructmove_ms.metrics import markdown_table
+    from instructmove_ms.video import VideoSettings
 
-    conditions = CONDITIONS if args.condition == "all" else (args.condition,)
+    if not (args.task or args.config):
+        raise ValueError("eval needs --task or --config")
+    if args.write_config:
+        if args.condition == "all":
+            raise ValueError("--write-config writes one condition's episodes, not 'all'")
+        config = heldout.evaluator_config(
+            args.task, args.robot, args.split, args.condition, args.episodes
+        )
+        print(f"{len(config.episodes)} episodes -> {config.write(Path(args.write_config))}")
+        return 0
+    if not (args.policy and args.out):
+        raise ValueError("eval needs --policy and --out (or --write-config FILE)")
+    check_backend(args.num_envs, args.sim_backend)
+    video = VideoSettings(first=args.video_first) if args.video else None
     policy = _load_policy(args.policy, args.obs_mode, args.control_mode)
     rows = []
-    for condition in conditions:
-        out = Path(args.out) / condition if len(conditions) > 1 else Path(args.out)
-        summary = evaluate(
-            policy,
-            args.task,
-            args.split,
-            out,
-            robot=args.robot,
-            condition=condition,
-            episodes=args.episodes,
-        )
+    for out, config in _eval_configs(args):
+        summary = evaluate_config(policy, config, out, args.num_envs, args.sim_backend, video)
         rows += summary["groups"]
     print(markdown_table(rows))
     return 0
@@ -293,13 +331,11 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--workers", type=int, default=1, help="parallel processes")
     p.add_argument("--shard-size", type=int, default=5, help="demos per resumable shard")
     p.set_defaults(func=_cmd_demos_generate)
-    p = sub.add_parser("eval", help="evaluate a policy on a held-out set")
-    p.add_argument("--task", required=True, help="env id")
+    p = sub.add_parser("eval", help="evaluate a policy on a held-out set or evaluator config")
+    p.add_argument("--task", default=None, help="env id (not with --config)")
     p.add_argument("--split", default="seen", help="seen, unseen_instance or unseen_category")
-    p.add_argument(
-        "--policy", required=True, help="oracle, blind, random, ws://HOST:PORT or MODULE:CLASS"
-    )
-    p.add_argument("--out", required=True, help="folder for the reports (resumable)")
+    p.add_argument("--policy", help="oracle, blind, random, ws://HOST:PORT or MODULE:CLASS")
+    p.add_argument("--out", help="folder for the reports (resumable)")
     p.add_argument("--robot", default=None, help="robot uid (default: the task's)")
     p.add_argument(
         "--condition",
@@ -307,9 +343,33 @@ def build_parser() -> argparse.ArgumentParser:
         help="instruction condition, or 'all' for the five counterfactual ones",
     )
     p.add_argument("--episodes", type=int, default=None, help="first N episodes of the set")
+    p.add_argument(
+        "--config", default=None, help="evaluate exactly the episodes of this evaluator config"
+    )
+    p.add_argument(
+        "--write-config",
+        default=None,
+        metavar="FILE",
+        help="write the evaluator config of --task/--robot/--split/--condition and stop",
+    )
+    p.add_argument("--num-envs", type=int, default=1, help="episodes at once (GPU sim only)")
+    p.add_argument("--sim-backend", default="auto", help="ManiSkill sim backend")
+    p.add_argument("--video", action="store_true", help="an MP4 per episode in OUT/videos")
+    p.add_argument("--video-first", type=int, default=None, help="videos of the first K only")
     p.add_argument("--obs-mode", default="rgb", help="observation mode of a remote policy")
     p.add_argument("--control-mode", default="pd_joint_pos", help="control mode of a remote policy")
     p.set_defaults(func=_cmd_eval)
+    export = sub.add_parser("export", help="convert recorded trajectories").add_subparsers(
+        dest="export_command", required=True
+    )
+    p = export.add_parser("mcap", help="one MCAP per episode (Foxglove schemas, cameras rendered)")
+    p.add_argument("--traj", required=True, help="trajectory .h5 (with .json, .episodes.json)")
+    p.add_argument("--out", required=True, help="output folder (resumable)")
+    p.add_argument("--workers", type=int, default=1, help="rendering processes")
+    p.add_argument("--width", type=int, default=None, help="camera width (default: robot's)")
+    p.add_argument("--height", type=int, default=None, help="camera height (default: robot's)")
+    p.add_argument("--jpeg-quality", type=int, default=90, help="colour image JPEG quality")
+    p.set_defaults(func=_cmd_export_mcap)
     assets = sub.add_parser("assets", help="the object library").add_subparsers(
         dest="assets_command", required=True
     )

@@ -1,40 +1,63 @@
-"""Batch evaluation of a policy on stored held-out episodes, resumable.
+"""Batch evaluation of a policy on held-out episodes, resumable.
 
-For each episode the env is reset to the stored spec (re-rendered for the requested
-instruction condition: same scene, other instruction), the policy acts for the task's
-horizon (stopping early once a task with a target has succeeded: stages latch), and the
-last step's info is scored. Results append to ``episodes.jsonl`` as they finish, so an
-interrupted run resumes where it stopped; ``summary.json`` and ``report.md`` are rewritten
-at the end.
+The episodes come from an evaluator config (ManiSkill's convention, see ``heldout``): a
+stored set re-rendered for an instruction condition (same scene, other instruction), or a
+config file. Each episode's env is reset to its spec, the policy acts for the horizon
+(stopping early once a task with a target has succeeded: stages latch) and the info of the
+last step is scored. Results append to ``episodes.jsonl`` as they finish, so an interrupted
+run resumes where it stopped; the reports (see ``reports``) are rewritten at the end.
+
+A policy that fails an episode (raises, or returns an action of the wrong shape or with
+NaN/inf; see ``guard``) gets the message in that row's ``error`` field and the traceback in
+``errors.log``; the episode is scored as failed and the run goes on to the next one.
+
+``num_envs > 1`` runs that many episodes at once, one per sub-scene of ManiSkill's GPU
+simulation: the policy gets batched observations and returns (num_envs, dim) actions, each
+sub-scene's result is latched when it finishes, and a policy failure fails the batch's
+unfinished episodes. The CPU simulation runs one env per process.
 """
 
 from __future__ import annotations
 
-import csv
 import json
-import os
+import re
+import traceback
+from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 import gymnasium as gym
+import numpy as np
+import torch
 from tqdm import tqdm
 
 from . import heldout
-from .metrics import EpisodeResult, aggregate, markdown_table, score_episode
-from .plots import grounding_attribution, stage_funnel
-from .tasks import TASKS
-from .validation import check_choice
+from .guard import PolicyError, check_action, failed_result, guarded
+from .heldout import ConfigEpisode, EvaluatorConfig
+from .metrics import EpisodeResult, score_episode
+from .reports import write_reports
+from .video import VideoSettings, outcome_text, write_video
 
 STATE_MODES = ("state", "state_dict")  # observation modes that need no renderer
+GPU_SIM_BACKENDS = ("auto", "gpu", "cuda", "physx_cuda")  # "auto" is the GPU for num_envs > 1
 
 
-def _atomic_write(path: Path, text: str) -> None:
-    tmp = path.with_suffix(path.suffix + ".tmp")
-    tmp.write_text(text)
-    os.replace(tmp, path)
+def check_backend(num_envs: int, sim_backend: str) -> None:
+    """Fail early where ``num_envs`` sub-scenes cannot run: more than one needs the GPU
+    simulation backend and a CUDA device."""
+    if num_envs < 1:
+        raise ValueError(f"num_envs must be at least 1, got {num_envs}")
+    if num_envs == 1:
+        return
+    needs = f"num_envs={num_envs} needs the GPU sim backend (sim_backend='physx_cuda')"
+    if sim_backend.split(":")[0] not in GPU_SIM_BACKENDS:
+        raise ValueError(f"{needs}; {sim_backend!r} simulates one env per process")
+    if not torch.cuda.is_available():
+        raise ValueError(f"{needs}, which needs a CUDA device; none is available")
 
 
-def _done(path: Path) -> dict[int, dict]:
-    """Finished episodes of an earlier run (a torn last line is dropped)."""
+def _done(path: Path) -> dict:
+    """Finished episodes of an earlier run by id (a torn last line is dropped)."""
     done = {}
     if path.is_file():
         for line in path.read_text().splitlines():
@@ -46,78 +69,179 @@ def _done(path: Path) -> dict[int, dict]:
     return done
 
 
+def _numpy(x: Any) -> np.ndarray:
+    return x.detach().cpu().numpy() if isinstance(x, torch.Tensor) else np.asarray(x)
+
+
+def _sub_info(info: dict, i: int) -> dict:
+    """Sub-scene ``i``'s part of a batched step info."""
+    return {
+        k: v[i : i + 1] if isinstance(v, torch.Tensor) and v.ndim else v for k, v in info.items()
+    }
+
+
+@dataclass
+class _Runner:
+    """Runs batches of episodes (one per sub-scene) and scores them."""
+
+    env: gym.Env
+    policy: Any
+    horizon: int
+    out: Path
+    video: VideoSettings | None
+    filmed: set
+
+    def _frames(self, frames: list[list[np.ndarray]], latched: list[dict | None]) -> None:
+        """Add a rendered frame to each filmed, unfinished episode."""
+        if any(frames[i] is not None and latched[i] is None for i in range(len(frames))):
+            images = _numpy(self.env.render())
+            for i, film in enumerate(frames):
+                if film is not None and latched[i] is None:
+                    film.append(images[i])
+
+    def _play(
+        self, batch: list[ConfigEpisode], obs: Any, info: dict, frames: list, latched: list
+    ) -> None:
+        """Step the policy until every episode finished, latching the info each finished
+        with into ``latched`` (a failure leaves the unfinished ones None)."""
+        u = self.env.unwrapped
+        dim = u.single_action_space.shape[0]
+        self._frames(frames, latched)
+        if hasattr(self.policy, "bind"):
+            guarded("bind", self.policy.bind, self.env)
+        guarded("reset", self.policy.reset, obs)
+        for _ in range(self.horizon):
+            action = check_action(guarded("act", self.policy.act, obs), dim, u.num_envs)
+            obs, _, _, _, info = self.env.step(action)
+            self._frames(frames, latched)
+            for i, episode in enumerate(batch):
+                if latched[i] is None and episode.spec.target >= 0 and bool(info["success"][i]):
+                    latched[i] = _sub_info(info, i)
+            if all(x is not None for x in latched):
+                break
+        for i in range(len(latched)):
+            if latched[i] is None:
+                latched[i] = _sub_info(info, i)
+
+    def run(self, batch: list[ConfigEpisode]) -> list[dict]:
+        """The result rows of ``batch`` (at most one episode per sub-scene)."""
+        u = self.env.unwrapped
+        padded = batch + [batch[-1]] * (u.num_envs - len(batch))
+        obs, info = self.env.reset(
+            seed=[e.seed for e in padded],
+            options={"episode": [e.spec.to_dict() for e in padded]},
+        )
+        frames = [[] if e.episode_id in self.filmed else None for e in batch]
+        latched: list[dict | None] = [None] * len(batch)
+        error = None
+        try:
+            self._play(batch, obs, info, frames, latched)
+        except PolicyError as exc:
+            error = str(exc)
+            self._log_error([e for e, x in zip(batch, latched, strict=True) if x is None], exc)
+        rows = []
+        for episode, last, film in zip(batch, latched, frames, strict=True):
+            if last is None:
+                result, failed = failed_result(episode.spec), error
+            else:
+                result, failed = score_episode(episode.spec, last, u.catalog), None
+            rows.append({"episode_id": episode.episode_id, **result.to_dict(), "error": failed})
+            if film:
+                self._write_video(episode, film, result, failed)
+        return rows
+
+    def _log_error(self, batch: list[ConfigEpisode], exc: PolicyError) -> None:
+        ids = ", ".join(str(e.episode_id) for e in batch)
+        tqdm.write(f"episode {ids}: {exc}")
+        with (self.out / "errors.log").open("a") as log:
+            log.write(f"episode {ids}:\n{''.join(traceback.format_exception(exc))}\n")
+
+    def _write_video(
+        self, episode: ConfigEpisode, frames: list, result: EpisodeResult, error: str | None
+    ) -> None:
+        name = re.sub(r"[^\w.-]", "_", str(episode.episode_id))
+        write_video(
+            self.out / "videos" / f"episode_{name}.mp4",
+            frames,
+            episode.spec.instruction,
+            outcome_text(result.success, result.stages, error),
+            self.video.fps,
+        )
+
+
+def _make_env(
+    policy: Any,
+    config: EvaluatorConfig,
+    num_envs: int,
+    sim_backend: str,
+    video: VideoSettings | None,
+) -> gym.Env:
+    obs_mode = policy.get_obs_mode()
+    if video:
+        render = {"render_mode": "rgb_array", "human_render_camera_configs": video.camera}
+    else:
+        render = {"render_backend": "none"} if obs_mode in STATE_MODES else {}
+    return gym.make(
+        config.env_id,
+        **{
+            **config.env_kwargs,
+            **render,
+            "obs_mode": obs_mode,
+            "control_mode": policy.get_control_mode(),
+            "num_envs": num_envs,
+            "sim_backend": sim_backend,
+        },
+    )
+
+
+def evaluate_config(
+    policy: Any,
+    config: EvaluatorConfig,
+    out: Path,
+    num_envs: int = 1,
+    sim_backend: str = "auto",
+    video: VideoSettings | None = None,
+) -> dict:
+    """Run ``policy`` on exactly the episodes of ``config``; write the config used, the
+    results and the reports to ``out``; return the summary."""
+    check_backend(num_envs, sim_backend)
+    out.mkdir(parents=True, exist_ok=True)
+    config.write(out / "config.json")
+    log = out / "episodes.jsonl"
+    done = _done(log)
+    todo = [e for e in config.episodes if e.episode_id not in done]
+    if todo:
+        filmed = {e.episode_id for e in config.episodes[: video.first]} if video else set()
+        env = _make_env(policy, config, num_envs, sim_backend, video)
+        runner = _Runner(env, policy, config.max_episode_steps, out, video, filmed)
+        desc = f"{config.env_id} {todo[0].spec.split} {todo[0].spec.condition}"
+        try:
+            with log.open("a") as sink, tqdm(total=len(todo), desc=desc, unit="episode") as bar:
+                for start in range(0, len(todo), num_envs):
+                    for row in runner.run(todo[start : start + num_envs]):
+                        sink.write(json.dumps(row) + "\n")
+                        sink.flush()
+                        done[row["episode_id"]] = row
+                        bar.update()
+        finally:
+            env.close()
+    return write_reports(out, [done[e.episode_id] for e in config.episodes if e.episode_id in done])
+
+
 def evaluate(
-    policy,
+    policy: Any,
     env_id: str,
     split: str,
     out: Path,
     robot: str | None = None,
     condition: str = "normal",
     episodes: int | None = None,
+    num_envs: int = 1,
+    sim_backend: str = "auto",
+    video: VideoSettings | None = None,
 ) -> dict:
-    """Run ``policy`` on the held-out set of (env, robot, split) under ``condition``."""
-    check_choice("task", env_id, TASKS)
-    robot = robot or TASKS[env_id].default_robot
-    specs = heldout.load_set(env_id, robot, split)[:episodes]
-    out.mkdir(parents=True, exist_ok=True)
-    log = out / "episodes.jsonl"
-    done = _done(log)
-    env = gym.make(
-        env_id,
-        robot_uids=robot,
-        obs_mode=policy.get_obs_mode(),
-        control_mode=policy.get_control_mode(),
-        **({"render_backend": "none"} if policy.get_obs_mode() in STATE_MODES else {}),
-        split=split,
-        condition=condition,
-    )
-    u = env.unwrapped
-    horizon = u.task.max_episode_steps
-    with log.open("a") as sink:
-        for k, stored in enumerate(
-            tqdm(specs, desc=f"{env_id} {split} {condition}", unit="episode")
-        ):
-            if k in done:
-                continue
-            spec = u.sample_episode(stored.seed, condition)  # the same scene, re-rendered
-            obs, _ = env.reset(options={"episode": spec.to_dict()})
-            if hasattr(policy, "bind"):
-                policy.bind(env)
-            policy.reset(obs)
-            for _ in range(horizon):
-                obs, _, _, _, info = env.step(policy.act(obs))
-                if spec.target >= 0 and bool(info["success"]):
-                    break
-            row = {"episode_id": k, **score_episode(spec, info, u.catalog).to_dict()}
-            sink.write(json.dumps(row) + "\n")
-            sink.flush()
-            done[k] = row
-    env.close()
-    return write_reports(out, [done[k] for k in sorted(done)])
-
-
-def write_reports(out: Path, rows: list[dict]) -> dict:
-    """summary.json (rates with Wilson intervals), episodes.csv, report.md and its two
-    figures (stage funnel, grounding-error attribution)."""
-    results = [
-        EpisodeResult(
-            **{**{k: v for k, v in r.items() if k != "episode_id"}, "shared": tuple(r["shared"])}
-        )
-        for r in rows
-    ]
-    summary = {"groups": aggregate(results), "episodes": len(results)}
-    stage_funnel(summary["groups"], out / "stage_funnel.png")
-    grounding_attribution(results, out / "grounding_errors.png")
-    _atomic_write(out / "summary.json", json.dumps(summary, indent=2))
-    _atomic_write(
-        out / "report.md",
-        "# InstructMove evaluation\n\n"
-        + markdown_table(summary["groups"])
-        + "\n\n![stage funnel](stage_funnel.png)\n![grounding errors](grounding_errors.png)\n",
-    )
-    with (out / "episodes.csv.tmp").open("w", newline="") as f:
-        writer = csv.DictWriter(f, fieldnames=list(rows[0]) if rows else ["episode_id"])
-        writer.writeheader()
-        writer.writerows(rows)
-    os.replace(out / "episodes.csv.tmp", out / "episodes.csv")
-    return summary
+    """Run ``policy`` on the held-out set of (env, robot, split) under ``condition`` (the
+    first ``episodes`` of it, all by default)."""
+    check_backend(num_envs, sim_backend)
+    config = heldout.evaluator_config(env_id, robot, split, condition, episodes)
+    return evaluate_config(policy, config, out, num_envs, sim_backend, video)

@@ -3,17 +3,25 @@
 Evaluation seeds start at ``EVAL_SEED_BASE`` (one block of a million per split); training
 data and demos use seeds below it, so the two never share an episode. The sets ship with
 the package under ``tasks/episodes/<env id>/<robot>/<split>.jsonl``.
+
+A set also exports as a config of ManiSkill's evaluator convention: ``env_info`` (``env_id``,
+``max_episode_steps``, ``env_kwargs``) and ``episodes`` of ``{episode_id, reset_kwargs}``,
+where ``reset_kwargs = {"seed": seed, "options": {"episode": spec dict}}`` rebuilds the
+episode exactly (see ``InstructMoveEnv.reset``).
 """
 
 from __future__ import annotations
 
+import json
 import os
 import tempfile
 from collections.abc import Iterator
+from dataclasses import dataclass
 from importlib import resources
 from pathlib import Path
 
-from .episode import EpisodeSpec
+from .episode import CONDITIONS, EpisodeSpec
+from .tasks import TASKS
 from .validation import check_choice
 
 EVAL_SEED_BASE = 1_000_000_000
@@ -60,3 +68,113 @@ def generate_set(env, count: int = EPISODES_PER_SET) -> Iterator[EpisodeSpec]:
     """Sample ``count`` held-out specs of the split ``env`` was made for."""
     for index in range(count):
         yield env.unwrapped.sample_episode(eval_seed(env.unwrapped.split, index))
+
+
+@dataclass(frozen=True)
+class ConfigEpisode:
+    """One episode of an evaluator config: its id, reset seed and spec."""
+
+    episode_id: int | str
+    seed: int
+    spec: EpisodeSpec
+
+
+@dataclass(frozen=True)
+class EvaluatorConfig:
+    """An evaluator config: the env to make and exactly which episodes to run."""
+
+    env_id: str
+    max_episode_steps: int
+    env_kwargs: dict
+    episodes: tuple[ConfigEpisode, ...]
+
+    def to_dict(self) -> dict:
+        return {
+            "env_info": {
+                "env_id": self.env_id,
+                "max_episode_steps": self.max_episode_steps,
+                "env_kwargs": self.env_kwargs,
+            },
+            "episodes": [
+                {
+                    "episode_id": e.episode_id,
+                    "reset_kwargs": {"seed": e.seed, "options": {"episode": e.spec.to_dict()}},
+                }
+                for e in self.episodes
+            ],
+        }
+
+    @classmethod
+    def from_dict(cls, data: dict) -> EvaluatorConfig:
+        info = data["env_info"]
+        check_choice("env_info.env_id", info["env_id"], TASKS)
+        episodes = []
+        for i, item in enumerate(data["episodes"]):
+            episode_id = item.get("episode_id", i)
+            reset = item.get("reset_kwargs", {})
+            if "episode" not in reset.get("options", {}):
+                raise ValueError(
+                    f"config episode {episode_id!r} has no reset_kwargs.options.episode: "
+                    "InstructMove episodes are given by their spec"
+                )
+            spec = EpisodeSpec.from_dict(reset["options"]["episode"])
+            episodes.append(ConfigEpisode(episode_id, int(reset.get("seed", spec.seed)), spec))
+        ids = [e.episode_id for e in episodes]
+        if len(set(ids)) != len(ids):
+            raise ValueError("config episode ids are not unique")
+        return cls(
+            env_id=info["env_id"],
+            max_episode_steps=int(
+                info.get("max_episode_steps", TASKS[info["env_id"]].max_episode_steps)
+            ),
+            env_kwargs=dict(info.get("env_kwargs", {})),
+            episodes=tuple(episodes),
+        )
+
+    def write(self, path: Path) -> Path:
+        """Write the config as JSON, atomically."""
+        path.parent.mkdir(parents=True, exist_ok=True)
+        tmp = path.with_suffix(path.suffix + ".tmp")
+        tmp.write_text(json.dumps(self.to_dict(), indent=2))
+        os.replace(tmp, path)
+        return path
+
+    @classmethod
+    def load(cls, path: Path) -> EvaluatorConfig:
+        return cls.from_dict(json.loads(path.read_text()))
+
+
+def evaluator_config(
+    env_id: str,
+    robot: str | None,
+    split: str,
+    condition: str = "normal",
+    episodes: int | None = None,
+    folder: Path | None = None,
+) -> EvaluatorConfig:
+    """The evaluator config of the first ``episodes`` of the stored set (all by default),
+    each re-rendered for ``condition``: the same scene with that condition's instruction."""
+    check_choice("task", env_id, TASKS)
+    check_choice("condition", condition, CONDITIONS)
+    robot = robot or TASKS[env_id].default_robot
+    specs = load_set(env_id, robot, split, folder)[:episodes]
+    if condition != "normal":
+        specs = _rerender(env_id, robot, split, condition, specs)
+    return EvaluatorConfig(
+        env_id=env_id,
+        max_episode_steps=TASKS[env_id].max_episode_steps,
+        env_kwargs={"robot_uids": robot, "split": split, "condition": condition},
+        episodes=tuple(ConfigEpisode(k, s.seed, s) for k, s in enumerate(specs)),
+    )
+
+
+def _rerender(
+    env_id: str, robot: str, split: str, condition: str, specs: list[EpisodeSpec]
+) -> list[EpisodeSpec]:
+    import gymnasium as gym
+
+    env = gym.make(env_id, robot_uids=robot, split=split, obs_mode="state", render_backend="none")
+    try:
+        return [env.unwrapped.sample_episode(s.seed, condition) for s in specs]
+    finally:
+        env.close()

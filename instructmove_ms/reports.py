@@ -1,0 +1,90 @@
+"""Evaluation reports from the rows of ``episodes.jsonl``.
+
+Writes ``summary.json`` (rates with Wilson intervals, episode and error counts),
+``episodes.csv``, ``report.md`` with its two figures (stage funnel, grounding-error
+attribution) and the outputs of ManiSkill's evaluator convention: ``episode_results.json``
+(per episode id, its scalar metrics) and ``average_metrics.json`` (their means).
+"""
+
+from __future__ import annotations
+
+import csv
+import json
+import os
+from pathlib import Path
+
+from .metrics import EpisodeResult, aggregate, markdown_table
+from .plots import grounding_attribution, stage_funnel
+
+SCALARS = ("success", "stage_score", "any_reach", "any_lift", "grounding_error", "control_error")
+
+
+def atomic_write(path: Path, text: str) -> None:
+    tmp = path.with_suffix(path.suffix + ".tmp")
+    tmp.write_text(text)
+    os.replace(tmp, path)
+
+
+def episode_result(row: dict) -> EpisodeResult:
+    """The scored episode of a row (rows also hold ``episode_id`` and ``error``)."""
+    fields = {k: v for k, v in row.items() if k not in ("episode_id", "error")}
+    return EpisodeResult(**{**fields, "shared": tuple(row["shared"])})
+
+
+def maniskill_metrics(row: dict) -> dict:
+    """A row's metrics as ManiSkill's evaluator reports them: stage flags and scalars, and
+    the policy's error where there was one."""
+    metrics = {**row["stages"], **{k: row[k] for k in SCALARS}}
+    if row.get("error"):
+        metrics["error"] = row["error"]
+    return metrics
+
+
+def write_maniskill_results(out: Path, rows: list[dict]) -> None:
+    per_episode = {str(r["episode_id"]): maniskill_metrics(r) for r in rows}
+    numeric = dict.fromkeys(
+        k for m in per_episode.values() for k, v in m.items() if not isinstance(v, str)
+    )
+    average = {}
+    for key in numeric:
+        values = [float(m[key]) for m in per_episode.values() if key in m]
+        average[key] = sum(values) / len(values)
+    atomic_write(out / "episode_results.json", json.dumps(per_episode, indent=2))
+    atomic_write(out / "average_metrics.json", json.dumps(average, indent=2))
+
+
+def write_csv(path: Path, rows: list[dict]) -> None:
+    fields = list(dict.fromkeys(k for r in rows for k in r)) or ["episode_id"]
+    tmp = path.with_suffix(path.suffix + ".tmp")
+    with tmp.open("w", newline="") as f:
+        writer = csv.DictWriter(f, fieldnames=fields, restval="")
+        writer.writeheader()
+        writer.writerows(rows)
+    os.replace(tmp, path)
+
+
+def write_reports(out: Path, rows: list[dict]) -> dict:
+    """Every report of ``rows``; returns the summary."""
+    results = [episode_result(r) for r in rows]
+    errors = sum(bool(r.get("error")) for r in rows)
+    summary = {"groups": aggregate(results), "episodes": len(results), "errors": errors}
+    stage_funnel(summary["groups"], out / "stage_funnel.png")
+    grounding_attribution(results, out / "grounding_errors.png")
+    atomic_write(out / "summary.json", json.dumps(summary, indent=2))
+    note = (
+        f"\n{errors} episode(s) ended in a policy error and count as failures "
+        "(see the `error` column of episodes.csv).\n"
+        if errors
+        else ""
+    )
+    atomic_write(
+        out / "report.md",
+        "# InstructMove evaluation\n\n"
+        + markdown_table(summary["groups"])
+        + "\n"
+        + note
+        + "\n![stage funnel](stage_funnel.png)\n![grounding errors](grounding_errors.png)\n",
+    )
+    write_csv(out / "episodes.csv", rows)
+    write_maniskill_results(out, rows)
+    return summary
