@@ -19,9 +19,9 @@ def stage_funnel(rows: list[dict], path: Path) -> Path:
     for k, row in enumerate(rows):
         stages = PLACE_STAGES if "place" in row else PICK_STAGES
         rates = [row[s] for s in stages]
-        errors = [
-            [row[s] - row[f"{s}_ci"][0] for s in stages],
-            [row[f"{s}_ci"][1] - row[s] for s in stages],
+        errors = [  # clamped: rounding can put a rate a hair outside its interval
+            [max(0.0, row[s] - row[f"{s}_ci"][0]) for s in stages],
+            [max(0.0, row[f"{s}_ci"][1] - row[s]) for s in stages],
         ]
         xs = [i + k * 0.8 / len(rows) for i in range(len(stages))]
         ax.bar(
