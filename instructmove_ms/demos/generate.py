@@ -213,7 +213,9 @@ def generate(
             _write_json(ledger_path, ledger)
 
         _run(jobs, workers, tick, finished)
-    path = _merge(out, stem, [s["name"] for s in ledger["shards"]])
+    path = out / f"{stem}.h5"
+    if jobs or not (out / f"{stem}.episodes.json").exists():  # the merge's last file
+        _merge(out, stem, [s["name"] for s in ledger["shards"]])
     failures = Counter()
     for shard in ledger["shards"]:
         failures.update(shard["failures"])
@@ -250,14 +252,17 @@ def _drain(queue, tick: Progress) -> None:
         tick(item)
 
 
-def _merge(out: Path, stem: str, names: list[str]) -> Path:
-    """Merge the shards into ``out/<stem>.h5`` + ``.json`` + ``.episodes.json``."""
-    path = out / f"{stem}.h5"
-    merge_trajectories(str(path), [str(out / "shards" / f"{name}.h5") for name in names])
+def _merge(out: Path, stem: str, names: list[str]) -> None:
+    """Merge the shards into ``out/<stem>.h5`` + ``.json`` + ``.episodes.json``, each moved
+    into place when complete (the sidecar last)."""
+    with tempfile.TemporaryDirectory(dir=out) as tmp:
+        merged = Path(tmp) / f"{stem}.h5"
+        merge_trajectories(str(merged), [str(out / "shards" / f"{name}.h5") for name in names])
+        os.replace(merged, out / merged.name)
+        os.replace(merged.with_suffix(".json"), out / f"{stem}.json")
     sidecar = []
     for name in names:
         sidecar += json.loads((out / "shards" / f"{name}.episodes.json").read_text())
     _write_json(
         out / f"{stem}.episodes.json", [{"episode_id": k, **e} for k, e in enumerate(sidecar)]
     )
-    return path
