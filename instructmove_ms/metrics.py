@@ -175,7 +175,7 @@ def comparison_table(
             key = tuple(row[k] for k in keys)
             cells.setdefault(key, {})[policy] = paper_cell(row)
             chance[key] = row["chance"]
-    head = (*keys, *runs, "chance 1/|G|")
+    head = (*keys, *runs, "chance (1/G)")
     lines = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
     for key in sorted(cells):
         row = [*map(str, key), *(cells[key].get(p, "-") for p in runs), f"{chance[key]:.2f}"]

@@ -79,7 +79,7 @@ def test_grounding_and_control_errors_are_told_apart(attribute_spec):
     assert "0.67/0.33 (0.50)" in markdown_table(rows)
     side_by_side = comparison_table({"oracle": rows, "blind": aggregate([grounding])})
     header, _, line = side_by_side.splitlines()
-    assert header.split(" | ")[-3:] == ["oracle", "blind", "chance 1/|G| |"]
+    assert header.split(" | ")[-3:] == ["oracle", "blind", "chance (1/G) |"]
     assert "| 0.67/0.33 (0.50) | 0.00/0.00 (0.00) | " in line
 
 
