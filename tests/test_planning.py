@@ -15,6 +15,7 @@ from instructmove_ms.planning import (
     ArmKinematics,
     CollisionWorld,
     JointLimits,
+    Rig,
     cartesian_path,
     densify,
     plan_joint_path,
@@ -171,18 +172,60 @@ def test_planned_pick_lifts_target(env):
     assert bool(info["lift"])
 
 
-def test_piperx_arms_plan_separately():
+def test_cartesian_path_partial(env):
+    kin = ArmKinematics.from_env(env)
+    start = np.asarray(REST[:7])
+    far = sapien.Pose(kin.fk(start).p + [0.0, 0.0, 1.5], kin.fk(start).q)
+    assert cartesian_path(kin, start, far) is None
+    rows = cartesian_path(kin, start, far, partial=True)
+    assert len(rows) > 1 and kin.fk(rows[-1]).p[2] > kin.fk(start).p[2] + 0.1
+
+
+def test_franka_rig_matches_to_actions(env):
+    rig = Rig.from_env(env)
+    targets = np.tile(rig.start, (4, 1))
+    assert np.array_equal(rig.actions(targets, CLOSED), to_actions(targets, CLOSED))
+    assert rig.gripper.open == OPEN and rig.gripper.value(0.04) == pytest.approx(0.2)
+
+
+@pytest.fixture(scope="module")
+def piperx():
     env = make_env(robot_uids="piperx", control_mode="pd_joint_pos")
     env.reset(seed=0)
-    try:
-        for arm in (0, 1):
-            kin = ArmKinematics.from_env(env, arm)
-            world = CollisionWorld.from_env(env, kin)
-            rest = kin.qpos[kin.arm]
-            assert kin.dof == 6 and not world.in_collision(rest)
-            goal = kin.ik(sapien.Pose(kin.fk(rest).p + [0.1, 0.0, -0.1], kin.fk(rest).q), [rest])
-            assert goal is not None
-            path = plan_joint_path(world, rest, goal)
-            assert path is not None and not any(world.in_collision(q) for q in path)
-    finally:
-        env.close()
+    yield env
+    env.close()
+
+
+def test_piperx_arms_plan_separately(piperx):
+    for arm in (0, 1):
+        kin = ArmKinematics.from_env(piperx, arm)
+        world = CollisionWorld.from_env(piperx, kin)
+        rest = kin.qpos[kin.arm]
+        assert kin.dof == 6 and not world.in_collision(rest)
+        goal = kin.ik(sapien.Pose(kin.fk(rest).p + [0.1, 0.0, -0.1], kin.fk(rest).q), [rest])
+        assert goal is not None
+        path = plan_joint_path(world, rest, goal)
+        assert path is not None and not any(world.in_collision(q) for q in path)
+
+
+def test_piperx_world_holds_the_other_arm_as_obstacle(piperx):
+    kin = ArmKinematics.from_env(piperx, 1)
+    world = CollisionWorld.from_env(piperx, kin)
+    assert {f"left_link{k}" for k in range(1, 7)} | {"left_base_link"} <= set(world.obstacles)
+    assert "right_base_link" in world.obstacles and "right_link1" in world.links
+    assert world.gripper_links >= {"right_finger1", "right_finger2", "right_gripper_base"}
+    rng = np.random.default_rng(0)
+    pairs = set().union(*(world.contacts(rng.uniform(kin.lower, kin.upper)) for _ in range(300)))
+    assert any(a.startswith("left_") for a, _ in pairs), "the right arm never meets the left"
+
+
+def test_piperx_rig_actions_hold_the_other_arm(piperx):
+    left, right = Rig.from_env(piperx, 0), Rig.from_env(piperx, 1)
+    targets = np.tile(right.start + 0.1, (3, 1))
+    actions = right.actions(targets, right.gripper.closed)
+    assert actions.shape == (3, 14) and actions.dtype == np.float32
+    assert np.allclose(actions[:, 6:12], targets) and np.allclose(actions[:, 13], 0.0)
+    assert np.allclose(actions[:, :6], left.start) and np.allclose(actions[:, 12], 0.1)
+    narrow = right.opened(0.04)
+    assert np.allclose(narrow.kin.qpos[[14, 15]], [0.02, -0.02])
+    assert np.allclose(right.kin.qpos[[14, 15]], [0.05, -0.05])  # the rig itself is unchanged

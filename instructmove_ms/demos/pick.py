@@ -1,115 +1,163 @@
-"""Planned picks of the episode's target with the Franka (``pd_joint_pos`` actions).
+"""Planned picks of the episode's target (``pd_joint_pos`` actions), Franka or PiperX rig.
 
-Recipe: a grasp affordance of the target -> IK pre-grasp 10 cm above it -> OMPL path there ->
-straight-line descent -> close -> straight lift (the object attached to the hand).
+Recipe: the arm nearest the target first (the other one of a rig as fallback) -> grasp
+candidates (affordances, leaned away where upright is out of reach, cheapest IK first) ->
+OMPL path to the pre-grasp back along the approach -> straight descent -> close -> straight
+lift (the object attached to the hand) as high as the arm reaches, up to ``LIFT``. The other
+arm of a rig holds still.
 """
 
 from __future__ import annotations
+
+from itertools import islice
 
 import numpy as np
 import sapien
 import torch
 
-from instructmove_ms.assets.affordances import grasp_affordances
 from instructmove_ms.planning import (
-    ArmKinematics,
     CollisionWorld,
-    JointLimits,
+    Rig,
+    arm_order,
     cartesian_path,
     plan_joint_path,
     time_parametrize,
-    to_actions,
 )
 
+from .grasps import Candidate, across, back_off, candidates, lean_away, target_box
+
 PICK_TASKS = ("PickCategory-InstructMove", "PickAttribute-InstructMove", "PickSpatial-InstructMove")
-OPEN, CLOSED = 1.0, -1.0
-PRE_GRASP = 0.10  # metres above the grasp
-LIFT = 0.15  # metres the object is lifted
-SETTLE, CLOSE, HOLD = 5, 20, 15  # steps: before the plan, closing the gripper, at the top
-#: Heights (m) tried above a grasp whose fingertips would touch the table (low objects).
-RAISE = (0.0, 0.003, 0.006, 0.009, 0.012)
+LIFT = 0.15  # metres the object is lifted where the arm reaches that high
+MIN_LIFT = 0.06  # and at least this much
+#: Leans (rad) added away from the shoulder along the lift, tried in turn: leaning helps a
+#: stretched arm rise.
+LIFT_LEANS = np.deg2rad([0.0, 15.0, 30.0])
+FINGER_CLEARANCE = 0.015  # metres between each open finger and the object at the grasp
+#: Steps: before the plan, at the pre-grasp and at the grasp (the arm catches up with its
+#: lagging PD targets before it goes on), closing the gripper, at the top.
+SETTLE, PAUSE, CLOSE, HOLD = 5, 10, 20, 15
+RAISE_STEP = 0.0015  # metres a grasp whose fingers touch the table is raised at a time
+#: A grasp may rise until the TCP is this much short of the task's reach distance from the
+#: object's box (the PD lags the targets a little).
+REACH_MARGIN = 0.005
+MAX_CANDIDATES = 30  # grasp candidates tried per arm
 STAGES = ("reach", "lift", "success")
-
-
-def _grasp_poses(env) -> list[sapien.Pose]:
-    """Top-down TCP poses at the target's grasp affordances (highest first), each with both
-    closing-axis signs, in the robot's base frame."""
-    u = env.unwrapped
-    spec = u.episode
-    inst = u.catalog[spec.objects[spec.target].uuid]
-    obj = u.agent.robot.pose.sp.inv() * u.objects[spec.target].pose.sp
-    rot = obj.to_transformation_matrix()[:3, :3]
-    poses = []
-    for grasp in grasp_affordances(inst):
-        z = rot @ np.asarray(grasp.approach)
-        for sign in (1.0, -1.0):
-            y = sign * (rot @ np.asarray(grasp.closing))
-            matrix = np.eye(4)
-            matrix[:3, :3] = np.stack([np.cross(y, z), y, z], axis=1)
-            matrix[:3, 3] = (obj * sapien.Pose(grasp.center)).p
-            poses.append(sapien.Pose(matrix))
-    return poses
 
 
 def _above(pose: sapien.Pose, dz: float) -> sapien.Pose:
     return sapien.Pose(pose.p + np.array([0.0, 0.0, dz]), pose.q)
 
 
-def _pick_path(env, kin: ArmKinematics, start: np.ndarray, grasp: sapien.Pose, q_pre):
-    """(path to the pre-grasp, descent, lift) joint paths for one grasp, or None."""
+def _grasp_height(env, rig: Rig, world: CollisionWorld, cand: Candidate) -> sapien.Pose | None:
+    """The candidate's grasp raised by the least multiple of ``RAISE_STEP`` that keeps the
+    hand off the table and the target (a finger inside a low container), or None where that
+    configuration touches anything else, the TCP would no longer reach the target's box
+    (``REACH_MARGIN``) or the fingertips would end above the affordance's grasp centre."""
+    pose, lo, hi = target_box(env)
+    reach = env.unwrapped.task.thresholds.reach - REACH_MARGIN
+    below = {"table", f"object_{env.unwrapped.episode.target}"}
+    grasp = cand.tcp
+    while True:
+        local = (pose.inv() * grasp).p
+        outside = np.linalg.norm(np.maximum(np.maximum(lo - local, local - hi), 0.0))
+        tip = back_off(grasp, -rig.tip_depth).p[2]
+        if outside > reach or tip > cand.tcp.p[2]:
+            return None
+        q = rig.kin.ik(grasp, seeds=[cand.q_pre], num_random=0)
+        if q is None:
+            return None
+        contacts = world.contacts(q)
+        if not contacts:
+            return grasp
+        if not all(below.intersection(pair) for pair in contacts):
+            return None
+        grasp = _above(grasp, RAISE_STEP)
+
+
+def _grasp_and_lift(env, rig: Rig, cand: Candidate) -> tuple[np.ndarray, np.ndarray] | None:
+    """(descent, lift) joint paths from the candidate's pre-grasp, or None."""
+    kin = rig.kin
     world = CollisionWorld.from_env(env, kin)
-    to_pre = plan_joint_path(world, start, q_pre, time_limit=1.0, attempts=2)
-    if to_pre is None:
+    grasp = _grasp_height(env, rig, world, cand)
+    if grasp is None:
+        return None
+    descend = cartesian_path(kin, cand.q_pre, grasp, world)
+    if descend is None:
         return None
     target = f"object_{env.unwrapped.episode.target}"
-    for link in world.gripper_links:
-        world.allow(link, target)
-    for dz in RAISE:  # the lowest grasp whose fingertips clear the table
-        descend = cartesian_path(kin, q_pre, _above(grasp, dz), world)
-        if descend is not None:
-            break
-    else:
-        return None
     world.attach(target, descend[-1])
     world.allow("attached", "table")  # it stands on the table when the lift begins
-    lift = cartesian_path(kin, descend[-1], _above(grasp, dz + LIFT), world)
-    return None if lift is None else (to_pre, descend, lift)
+    lift = _lift(rig, world, descend[-1], grasp)
+    return None if lift is None else (descend, lift)
 
 
-def plan_pick(env, limits: JointLimits | None = None) -> np.ndarray | str:
-    """``pd_joint_pos`` actions that pick up the episode's target from the env's current
-    state, or the failure reason: ``"no_ik"`` (no collision-free pre-grasp configuration for
-    any grasp) or ``"no_plan"`` (no collision-free path for any grasp with one)."""
-    limits = limits or JointLimits.franka()
-    kin = ArmKinematics.from_env(env)
-    start = kin.qpos[kin.arm]
-    free = CollisionWorld.from_env(env, kin)
-    candidates = []
-    for grasp in _grasp_poses(env):
-        q_pre = kin.ik(
-            _above(grasp, PRE_GRASP), seeds=[start], accept=lambda q: not free.in_collision(q)
-        )
-        if q_pre is not None:
-            candidates.append((grasp, q_pre))
-    if not candidates:
-        return "no_ik"
-    for grasp, q_pre in candidates:
-        paths = _pick_path(env, kin, start, grasp, q_pre)
-        if paths is None:
+def _lift(rig: Rig, world: CollisionWorld, q: np.ndarray, grasp: sapien.Pose) -> np.ndarray | None:
+    """A straight lift of ``LIFT`` from configuration ``q`` at ``grasp``, leaning by the first
+    of ``LIFT_LEANS`` that gets there, else the highest lift of ``MIN_LIFT`` at least; None
+    where none rises that far."""
+    best, top = None, grasp.p[2] + MIN_LIFT
+    axis = across(grasp, rig.shoulder)
+    for lean in LIFT_LEANS:
+        goal = _above(lean_away(grasp, axis, rig.shoulder, lean), LIFT)
+        lift = cartesian_path(rig.kin, q, goal, world, partial=True)
+        height = rig.kin.fk(lift[-1]).p[2]
+        if height >= top:
+            best, top = lift, height
+        if height >= goal.p[2] - 1e-3:
+            break
+    return best
+
+
+def _plan_arm(env, rig: Rig) -> np.ndarray | str:
+    """The pick actions with ``rig``'s arm, or ``"no_ik"`` / ``"no_plan"``. The fingers open
+    ``FINGER_CLEARANCE`` wider than the grasped width on each side, or fully where that
+    collides (a finger inside a container)."""
+    free = CollisionWorld.from_env(env, rig.kin)
+    start, closed = rig.start, rig.gripper.closed
+    reason = "no_ik"
+    for cand in islice(candidates(env, rig, free), MAX_CANDIDATES):
+        reason = "no_plan"
+        narrow = min(cand.width + 2.0 * FINGER_CLEARANCE, rig.gripper.max_width)
+        for width in dict.fromkeys((narrow, rig.gripper.max_width)):
+            paths = _grasp_and_lift(env, rig.opened(width), cand)
+            if paths is not None:
+                break
+        else:
             continue
-        to_pre, descend, lift = paths
-        grip = descend[-1:]
+        to_pre = plan_joint_path(free, start, cand.q_pre, time_limit=1.0, attempts=2)
+        if to_pre is None:
+            continue
+        descend, lift = paths
+        open_ = rig.gripper.value(width)
         return np.vstack(
             [
-                to_actions(np.repeat(start[None], SETTLE, axis=0), OPEN),
-                to_actions(time_parametrize(to_pre, limits), OPEN),
-                to_actions(time_parametrize(descend, limits), OPEN),
-                to_actions(np.repeat(grip, CLOSE, axis=0), CLOSED),
-                to_actions(time_parametrize(lift, limits), CLOSED),
-                to_actions(np.repeat(lift[-1:], HOLD, axis=0), CLOSED),
+                rig.actions(np.repeat(start[None], SETTLE, axis=0), open_),
+                rig.actions(time_parametrize(to_pre, rig.limits), open_),
+                rig.actions(np.repeat(to_pre[-1:], PAUSE, axis=0), open_),
+                rig.actions(time_parametrize(descend, rig.limits), open_),
+                rig.actions(np.repeat(descend[-1:], PAUSE, axis=0), open_),
+                rig.actions(np.repeat(descend[-1:], CLOSE, axis=0), closed),
+                rig.actions(time_parametrize(lift, rig.limits), closed),
+                rig.actions(np.repeat(lift[-1:], HOLD, axis=0), closed),
             ]
         )
-    return "no_plan"
+    return reason
+
+
+def plan_pick(env) -> np.ndarray | str:
+    """``pd_joint_pos`` actions that pick up the episode's target from the env's current
+    state, or the failure reason: ``"no_ik"`` (no collision-free pre-grasp configuration for
+    any grasp with any arm) or ``"no_plan"`` (no collision-free path for any grasp with
+    one). Arms are tried nearest the target first."""
+    u = env.unwrapped
+    target = u.agent.robot.pose.sp.inv() * u.objects[u.episode.target].pose.sp
+    reasons = []
+    for arm in arm_order(env, target.p):
+        actions = _plan_arm(env, Rig.from_env(env, arm))
+        if not isinstance(actions, str):
+            return actions
+        reasons.append(actions)
+    return "no_plan" if "no_plan" in reasons else "no_ik"
 
 
 def rollout(env, actions: np.ndarray) -> list[dict[str, bool]]:

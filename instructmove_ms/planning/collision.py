@@ -87,34 +87,42 @@ def _actor_shapes(actor) -> list[physx.PhysxCollisionShape]:
 class CollisionWorld:
     """The arm of ``kin`` against named static obstacles, with allowed-contact filtering.
 
-    ``in_collision(q)`` checks self-collision (adjacent and sibling links, and links already
-    touching at construction, are ignored) and robot-obstacle collision. A grasped object can
-    be attached to the end effector; it then moves with the arm and may touch the gripper.
+    The links the arm's joints move form the robot; every other link with geometry (the
+    base, a second arm at its ``kin.qpos`` configuration) becomes a static obstacle named
+    after the link. ``in_collision(q)`` checks the moving links against each other and
+    against the obstacles; parent-child and sibling links, and bodies already touching at
+    ``kin.qpos``, are ignored. A grasped object can be attached to the end effector; it then
+    moves with the arm and may touch the gripper.
     """
 
     def __init__(self, kin: ArmKinematics, robot, obstacles: dict[str, tuple[Geoms, np.ndarray]]):
         self.kin = kin
+        parent = {
+            j.child_link.name: j.parent_link.name
+            for j in robot.get_joints()
+            if j.parent_link is not None
+        }
+        arm_joints = {kin.joints[i] for i in kin.arm}
+        moved = {j.child_link.name for j in robot.get_joints() if j.name in arm_joints}
+        moved = _subtree(moved, parent)
+        rest = kin.link_poses(kin.qpos[kin.arm])
+        static = dict(obstacles)
         self.links: dict[str, Geoms] = {}
         for link in robot.get_links():
             geoms = _body_geoms(link._objs[0].get_collision_shapes())
-            if geoms:
+            if not geoms:
+                continue
+            if link.name in moved:
                 self.links[link.name] = geoms
+            else:
+                pose = rest[kin.links.index(link.name)].to_transformation_matrix()
+                static[link.name] = (geoms, pose)
         self.obstacles: dict[str, Geoms] = {}
-        for name, (geoms, pose) in obstacles.items():
+        for name, (geoms, pose) in static.items():
             _place(geoms, pose)
             self.obstacles[name] = geoms
         self.attached: tuple[str, Geoms] | None = None
         self.allowed: set[frozenset[str]] = set()
-        parent = {}
-        for joint in robot.get_joints():
-            if joint.parent_link is not None:
-                parent[joint.child_link.name] = joint.parent_link.name
-        fixed = {j.child_link.name for j in robot.get_joints() if j.type[0] == "fixed"}
-        #: Links that no joint moves: the root and what is fixed to it.
-        self.base_links = {kin.links[0]}
-        for name in kin.links:  # links come parents first
-            if name in fixed and parent.get(name) in self.base_links:
-                self.base_links.add(name)
         for child, par in parent.items():
             self.allow(child, par)
             for other, other_par in parent.items():
@@ -122,15 +130,11 @@ class CollisionWorld:
                     self.allow(child, other)
         ee = kin.links[kin.ee_index]
         #: Links that may touch an attached object: the end effector's parent and its subtree.
-        self.gripper_links = {parent.get(ee, ee)}
-        while True:
-            more = {c for c, p in parent.items() if p in self.gripper_links} - self.gripper_links
-            if not more:
-                break
-            self.gripper_links |= more
+        self.gripper_links = _subtree({parent.get(ee, ee)}, parent)
         self._rebuild()
+        robot_links = set(kin.links)
         for a, b in self.contacts(kin.qpos[kin.arm]):
-            if a in self.links and b in self.links:
+            if a in robot_links and b in robot_links:
                 self.allow(a, b)
 
     @classmethod
@@ -148,10 +152,7 @@ class CollisionWorld:
             )
             for name, actor in actors.items()
         }
-        world = cls(kin, u.agent.robot, obstacles)
-        for link in world.base_links:  # the base stands on the table
-            world.allow(link, "table")
-        return world
+        return cls(kin, u.agent.robot, obstacles)
 
     def add_obstacle(
         self,
@@ -248,6 +249,16 @@ class CollisionWorld:
         self.attached = None
         self._rebuild()
         return name
+
+
+def _subtree(roots: set[str], parent: dict[str, str]) -> set[str]:
+    """``roots`` and every link below them (``parent``: child link -> parent link)."""
+    out = set(roots)
+    while True:
+        more = {c for c, p in parent.items() if p in out} - out
+        if not more:
+            return out
+        out |= more
 
 
 def _matrix(obj: fcl.CollisionObject) -> np.ndarray:

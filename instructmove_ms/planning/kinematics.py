@@ -6,6 +6,7 @@ the other joints (fingers, a second arm) stay at ``ArmKinematics.qpos`` values.
 
 from __future__ import annotations
 
+import copy
 from collections.abc import Callable, Sequence
 
 import numpy as np
@@ -35,16 +36,17 @@ class ArmKinematics:
     def from_env(cls, env, arm: int = 0) -> ArmKinematics:
         """The kinematics of arm ``arm`` of the env's agent (Franka: the only arm)."""
         agent = env.unwrapped.agent
-        tcp = agent.tcp_links[arm].name
-        names = list(agent.arm_joint_names)
-        if len(agent.tcp_links) > 1:  # dual-arm rig: every arm joint is listed, arm by arm
-            per_arm = len(names) // len(agent.tcp_links)
-            names = names[arm * per_arm : (arm + 1) * per_arm]
-        return cls(agent.robot, names, tcp)
+        return cls(agent.robot, arm_joint_names(agent, arm), agent.tcp_links[arm].name)
 
     @property
     def dof(self) -> int:
         return len(self.arm)
+
+    def with_qpos(self, qpos: np.ndarray) -> ArmKinematics:
+        """A copy (sharing the model) whose joints outside the arm sit at ``qpos``."""
+        out = copy.copy(self)
+        out.qpos = np.asarray(qpos, dtype=float)
+        return out
 
     def full(self, q: np.ndarray) -> np.ndarray:
         """The robot's full configuration with the arm joints set to ``q``."""
@@ -99,6 +101,14 @@ class ArmKinematics:
             return None
         ref = np.asarray(seeds[0], dtype=float)
         return min(solutions, key=lambda q: float(np.abs(q - ref).sum()))
+
+
+def arm_joint_names(agent, arm: int) -> list[str]:
+    """The joints of arm ``arm`` of an InstructMove agent (which lists every arm joint, arm
+    by arm, in ``arm_joint_names``)."""
+    names = list(agent.arm_joint_names)
+    per_arm = len(names) // len(agent.tcp_links)
+    return names[arm * per_arm : (arm + 1) * per_arm]
 
 
 def _wrap_into(q: np.ndarray, lower: np.ndarray, upper: np.ndarray) -> np.ndarray:

@@ -20,6 +20,10 @@ ou.setLogLevel(ou.LOG_WARN)
 #: Franka Panda joint limits from the datasheet: velocity (rad/s) and acceleration (rad/s^2).
 FRANKA_VELOCITY = np.array([2.175, 2.175, 2.175, 2.175, 2.61, 2.61, 2.61])
 FRANKA_ACCELERATION = np.array([15.0, 7.5, 10.0, 12.5, 15.0, 20.0, 20.0])
+#: PiperX joint velocity limit of the vendor description (rad/s), every joint. No acceleration
+#: limit is published: ours is 5 times the velocity, within the Franka's ratios (3.4 to 7.7).
+PIPERX_VELOCITY = np.full(6, 5.0)
+PIPERX_ACCELERATION = np.full(6, 25.0)
 
 
 @dataclass(frozen=True)
@@ -33,6 +37,11 @@ class JointLimits:
     def franka(cls, scale: float = 0.3) -> JointLimits:
         """The Franka's limits scaled down (demos move calmly and the PD tracks them)."""
         return cls(FRANKA_VELOCITY * scale, FRANKA_ACCELERATION * scale)
+
+    @classmethod
+    def piperx(cls, scale: float = 0.15) -> JointLimits:
+        """One PiperX arm's limits scaled down to about the Franka demos' joint speeds."""
+        return cls(PIPERX_VELOCITY * scale, PIPERX_ACCELERATION * scale)
 
 
 def densify(path: np.ndarray, max_step: float) -> np.ndarray:
@@ -117,10 +126,12 @@ def cartesian_path(
     world: CollisionWorld | None = None,
     step: float = 0.005,
     max_joint_step: float = 0.1,
+    partial: bool = False,
 ) -> np.ndarray | None:
     """Joint configurations that move the end effector from its pose at ``start`` along a
     straight line (orientation slerped) to ``goal``, ``step`` metres apart; None where IK
-    fails, a joint jumps more than ``max_joint_step`` rad, or ``world`` reports a collision."""
+    fails, a joint jumps more than ``max_joint_step`` rad, or ``world`` reports a collision
+    (with ``partial``, the configurations up to there instead)."""
     begin = kin.fk(start)
     p0, p1 = np.asarray(begin.p, dtype=float), np.asarray(goal.p, dtype=float)
     r0, r1 = np.asarray(begin.q, dtype=float), np.asarray(goal.q, dtype=float)
@@ -130,10 +141,12 @@ def cartesian_path(
         t = k / n
         pose = sapien.Pose(p0 + t * (p1 - p0), _slerp(r0, r1, t))
         q = kin.ik(pose, seeds=[rows[-1]], num_random=0)
-        if q is None or float(np.abs(q - rows[-1]).max()) > max_joint_step:
-            return None
-        if world is not None and world.in_collision(q):
-            return None
+        if (
+            q is None
+            or float(np.abs(q - rows[-1]).max()) > max_joint_step
+            or (world is not None and world.in_collision(q))
+        ):
+            return np.asarray(rows) if partial else None
         rows.append(q)
     return np.asarray(rows)
 

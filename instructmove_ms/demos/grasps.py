@@ -1,0 +1,157 @@
+"""Grasp candidates for a planned pick: the target's grasp affordances as TCP poses, leaned
+away from the arm where it cannot reach them upright, ranked by IK feasibility and
+joint-space cost."""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+from dataclasses import dataclass
+
+import numpy as np
+import sapien
+
+from instructmove_ms.assets.affordances import grasp_affordances
+from instructmove_ms.planning import CollisionWorld, Rig
+
+#: Leans (rad) of the approach away from the arm's shoulder, tried in this order: a far or
+#: high grasp that the hand cannot reach pointing straight down it reaches leaned.
+LEANS = np.deg2rad([0.0, 4.0, 8.0, 12.0, 16.0, 20.0, 25.0, 30.0, 37.5, 45.0])
+#: Distances (m) back along the approach from the grasp to the pre-grasp, longest first.
+PRE_GRASP = (0.10, 0.05, 0.03)
+#: Metres the fingertips clear the target's top by at the pre-grasp (the arm lags its plan).
+PRE_CLEARANCE = 0.01
+#: Cost (rad of joint motion) per metre between a grasp and the middle of the target's box
+#: in the table plane: grasps far off the middle let the object turn out of the fingers.
+OFF_CENTRE_COST = 20.0
+#: Turns (rad) of the closing axis about the approach, tried besides the affordance's own:
+#: fingers closing askew on a bar align it, and a turned hand can lean with level fingers.
+YAWS = np.deg2rad([30.0, -30.0])
+YAW_COST = 2.0  # cost (rad of joint motion) per radian of turn
+
+
+@dataclass(frozen=True)
+class GraspFrame:
+    """A grasp affordance of the target in the robot's base frame: ``pose`` has its y axis
+    along the closing axis and its z axis along the approach; ``width`` is the object's
+    width between the fingers, ``cost`` its ranking cost besides joint motion (off the
+    box's middle, turned)."""
+
+    pose: sapien.Pose
+    width: float
+    cost: float
+
+
+@dataclass(frozen=True)
+class Candidate:
+    """A grasp reachable from the rig's start: the TCP at the grasp (base frame), the
+    object's width between the fingers, a collision-free configuration ``q_pre`` at the
+    pre-grasp and its cost (summed joint motion from the start, plus ``OFF_CENTRE_COST``)."""
+
+    tcp: sapien.Pose
+    width: float
+    q_pre: np.ndarray
+    cost: float
+
+
+def target_box(env) -> tuple[sapien.Pose, np.ndarray, np.ndarray]:
+    """The target's pose (base frame) and its box's (lowest, highest) corners in its frame."""
+    u = env.unwrapped
+    spec = u.episode
+    lo, hi = u.catalog[spec.objects[spec.target].uuid].bounds
+    return u.agent.robot.pose.sp.inv() * u.objects[spec.target].pose.sp, lo, hi
+
+
+def grasp_frames(env, max_width: float) -> list[GraspFrame]:
+    """The target's grasp affordances for fingers opening ``max_width``, each with both
+    closing-axis signs, as given and turned by ``YAWS`` (the width across a turned bar
+    grows as 1 / cos)."""
+    u = env.unwrapped
+    spec = u.episode
+    inst = u.catalog[spec.objects[spec.target].uuid]
+    obj = u.agent.robot.pose.sp.inv() * u.objects[spec.target].pose.sp
+    rot = obj.to_transformation_matrix()[:3, :3]
+    lo, hi = inst.bounds
+    middle = (obj * sapien.Pose(0.5 * (lo + hi))).p
+    frames = []
+    for grasp in grasp_affordances(inst, max_opening=max_width):
+        z = rot @ np.asarray(grasp.approach)
+        center = (obj * sapien.Pose(grasp.center)).p
+        offset = OFF_CENTRE_COST * float(np.linalg.norm((center - middle)[:2]))
+        for yaw in (0.0, *YAWS):
+            width = grasp.width / np.cos(yaw)
+            if width > max_width:
+                continue
+            turn = sapien.Pose(q=[np.cos(yaw / 2), *(np.sin(yaw / 2) * z)])
+            closing = turn.to_transformation_matrix()[:3, :3] @ rot @ np.asarray(grasp.closing)
+            for sign in (1.0, -1.0):
+                y = sign * closing
+                matrix = np.eye(4)
+                matrix[:3, :3] = np.stack([np.cross(y, z), y, z], axis=1)
+                matrix[:3, 3] = center
+                frames.append(GraspFrame(sapien.Pose(matrix), width, offset + YAW_COST * abs(yaw)))
+    return frames
+
+
+def back_off(tcp: sapien.Pose, distance: float) -> sapien.Pose:
+    """``tcp`` moved ``distance`` metres back along its approach (its z axis)."""
+    approach = tcp.to_transformation_matrix()[:3, 2]
+    return sapien.Pose(tcp.p - distance * approach, tcp.q)
+
+
+def lean_away(
+    frame: sapien.Pose, axis: np.ndarray, shoulder: np.ndarray, angle: float
+) -> sapien.Pose:
+    """``frame`` turned about its origin and ``axis`` (unit, base frame) by ``angle`` rad, the
+    way that leans its z axis away from ``shoulder``."""
+    radial = np.asarray(frame.p, dtype=float) - shoulder
+    z = frame.to_transformation_matrix()[:3, 2]
+    # Turning z about the axis moves it along axis x z: pick the sign that moves it away.
+    half = 0.5 * angle * (-1.0 if float(np.cross(axis, z)[:2] @ radial[:2]) < 0.0 else 1.0)
+    turn = sapien.Pose(q=[np.cos(half), *(np.sin(half) * np.asarray(axis))])
+    return sapien.Pose(frame.p) * turn * sapien.Pose(q=frame.q)
+
+
+def across(frame: sapien.Pose, shoulder: np.ndarray) -> np.ndarray:
+    """The horizontal axis across the shoulder-to-frame direction: turning about it leans
+    straight away from the shoulder."""
+    radial = np.asarray(frame.p, dtype=float)[:2] - shoulder[:2]
+    radial /= max(float(np.linalg.norm(radial)), 1e-9)
+    return np.array([-radial[1], radial[0], 0.0])
+
+
+def leaned(frame: sapien.Pose, shoulder: np.ndarray, angle: float) -> list[sapien.Pose]:
+    """``frame`` leaned away from ``shoulder`` by ``angle`` rad about its closing (y) axis,
+    which keeps the fingers level, and about the axis ``across``, which leans straight away
+    (one pose when upright)."""
+    if angle == 0.0:
+        return [frame]
+    closing = frame.to_transformation_matrix()[:3, 1]
+    return [lean_away(frame, a, shoulder, angle) for a in (closing, across(frame, shoulder))]
+
+
+def candidates(env, rig: Rig, world: CollisionWorld) -> Iterator[Candidate]:
+    """Grasp frames (``grasp_frames``) leaned by each of ``LEANS`` in turn (``leaned``)
+    whose pre-grasp (the farthest of ``PRE_GRASP`` with one whose fingertips clear the
+    target by ``PRE_CLEARANCE``) has a collision-free IK solution; within a lean, the
+    cheapest first. Each lean is solved only when asked for."""
+    frames = grasp_frames(env, rig.gripper.max_width)
+    pose, _, hi = target_box(env)
+    clear = (pose * sapien.Pose(hi)).p[2] + PRE_CLEARANCE
+    start = rig.start
+    for lean in LEANS:
+        found = []
+        for frame in frames:
+            for grasp in leaned(frame.pose, rig.shoulder, lean):
+                tcp = grasp * rig.gripper.tcp_in_grasp
+                for distance in PRE_GRASP:
+                    pre = back_off(tcp, distance)
+                    if back_off(pre, -rig.tip_depth).p[2] < clear:
+                        break
+                    q_pre = rig.kin.ik(
+                        pre, seeds=[start], accept=lambda q: not world.in_collision(q)
+                    )
+                    if q_pre is not None:
+                        cost = float(np.abs(q_pre - start).sum()) + frame.cost
+                        found.append(Candidate(tcp, frame.width, q_pre, cost))
+                        break
+        yield from sorted(found, key=lambda c: c.cost)

@@ -1,0 +1,284 @@
+"""Planned pick-and-place demos for PlaceA2B (``pd_joint_pos`` actions).
+
+Recipe: the planned pick of ``demos.pick`` (grasp, lift, hold) runs first; the place is then
+planned closed loop from the live state: the arm's configuration and the object's actual pose
+in the hand. Release poses hold the object over the goal receptacle's interior, set upright
+where the grasp tilted it (else as held), turned about the vertical to line up with the
+interior (a few yaws), as low as the hand clears the receptacle (deep bins: dropped from above
+the rim). An OMPL path leads above the release pose, a straight descent reaches it, the
+gripper opens and the hand retreats straight up. ``synthesize_place`` runs both from a reset.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+from dataclasses import dataclass
+
+import numpy as np
+import sapien
+import torch
+
+from instructmove_ms.demos.pick import plan_pick
+from instructmove_ms.planning import (
+    CollisionWorld,
+    JointLimits,
+    Rig,
+    cartesian_path,
+    plan_joint_path,
+    time_parametrize,
+)
+
+#: Per-step stage flags of a place rollout (PlaceA2B's ``info`` keys; success is place).
+PLACE_STAGES = ("reach_pick", "lift_pick", "reach_place", "place", "success")
+CLEARANCE = 0.01  # metres between the object's bottom and the receptacle floor at release
+HEIGHT_STEP = 0.01  # release heights are tried upwards from the lowest, this far apart
+ABOVE_RIM = 0.04  # the pre-place pose holds the object's bottom this far above the rim
+PRE_PLACE = 0.04  # and at least this far above its release pose
+RETREAT = 0.10  # metres the open hand moves up
+FIT_MARGIN = 0.005  # metres kept between the object's footprint and the interior's walls
+UPRIGHT = 0.05  # rad: releases tilted less count as upright (preferred)
+YAW_OFFSETS = (0.0, 0.25, -0.25)  # rad, around each alignment with the interior's axes
+MAX_RELEASES = 8  # the best releases a path is planned to, at most
+OPEN_STEPS = 12  # steps the gripper gets to open
+SETTLE_STEPS = 40  # steps at most for a dropped object to come to rest
+SPEEDUPS = (1.0, 1.5, 2.0)  # of the rig's joint limits, where the horizon asks for it
+
+#: Joint paths of a place: to the pre-place pose, the descent, the retreat.
+Paths = tuple[np.ndarray, np.ndarray, np.ndarray]
+
+
+@dataclass(frozen=True)
+class Interior:
+    """The goal receptacle's interior in the robot's base frame: ``frame`` sits at the centre
+    of its floor (receptacle orientation), ``half`` are its xy half extents and ``height``
+    the rim's height above the floor."""
+
+    frame: np.ndarray
+    half: np.ndarray
+    height: float
+
+
+@dataclass(frozen=True)
+class Release:
+    """A collision-free configuration ``q`` holding the object at a place pose: the TCP at
+    ``tcp``, the object's bottom ``height`` above the floor, its footprint inside the walls
+    where ``fits``, ``tilt`` (rad) off its upright orientation; ``cost`` is the summed joint
+    motion from the start."""
+
+    q: np.ndarray
+    tcp: sapien.Pose
+    height: float
+    fits: bool
+    tilt: float
+    cost: float
+
+
+def step_flags(env, actions: np.ndarray) -> list[dict[str, bool]]:
+    """Step ``env`` through ``actions``; returns each step's ``PLACE_STAGES`` flags of the
+    single sub-scene. Stops early at truncation."""
+    flags = []
+    for action in actions:
+        _, _, _, truncated, info = env.step(torch.from_numpy(action)[None])
+        flags.append({k: bool(info[k][0]) for k in PLACE_STAGES})
+        if bool(truncated):
+            break
+    return flags
+
+
+def goal_interior(env) -> Interior:
+    """The goal receptacle's interior at the receptacle's current pose."""
+    u = env.unwrapped
+    spec = u.episode
+    region = u.catalog[spec.objects[spec.goal_destination].uuid].interior
+    pose = u.agent.robot.pose.sp.inv() * u.objects[spec.goal_destination].pose.sp
+    frame = (pose * sapien.Pose(region.center)).to_transformation_matrix()
+    return Interior(frame, np.asarray(region.half), region.height)
+
+
+def _turn(angle: float) -> np.ndarray:
+    c, s = np.cos(angle), np.sin(angle)
+    return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
+
+
+def _heading(rotation: np.ndarray) -> float:
+    """Heading of the rotation's x axis (its y axis where x is near vertical)."""
+    axis = rotation[:, 0] if np.linalg.norm(rotation[:2, 0]) > 0.3 else rotation[:, 1]
+    return float(np.arctan2(axis[1], axis[0]))
+
+
+def _upright(rotation: np.ndarray) -> np.ndarray:
+    """``rotation`` tilted back by the least rotation that turns its z axis straight up."""
+    z = rotation[:, 2]
+    axis = np.cross(z, [0.0, 0.0, 1.0])
+    sin, cos = float(np.linalg.norm(axis)), float(z[2])
+    if sin < 1e-9:
+        return rotation
+    k = axis / sin
+    skew = np.array([[0.0, -k[2], k[1]], [k[2], 0.0, -k[0]], [-k[1], k[0], 0.0]])
+    return (np.eye(3) + sin * skew + (1.0 - cos) * skew @ skew) @ rotation
+
+
+def _orientations(interior: Interior, held: np.ndarray) -> Iterator[tuple[np.ndarray, float]]:
+    """(orientation, tilt in rad) of the object to release: set upright, and as held where
+    that tilts; each turned about the vertical to line up with each of the interior's four
+    axis directions, each with ``YAW_OFFSETS``."""
+    frame = interior.frame[:3, :3]
+    held_tilt = float(np.arccos(np.clip(held[2, 2], -1.0, 1.0)))
+    for rotation, tilt in [(_upright(held), 0.0)] + [(held, held_tilt)] * (held_tilt > UPRIGHT):
+        misalignment = _heading(frame.T @ rotation)
+        for quarter in range(4):
+            for offset in YAW_OFFSETS:
+                turn = frame @ _turn(quarter * np.pi / 2 + offset - misalignment) @ frame.T
+                yield turn @ rotation, tilt
+
+
+def _object_pose(
+    interior: Interior, rotation: np.ndarray, corners: np.ndarray, height: float
+) -> sapien.Pose:
+    """The object pose with orientation ``rotation`` whose bounding box (``corners`` in the
+    object's frame) is centred over the interior, its bottom ``height`` above the floor."""
+    frame = interior.frame
+    centre = corners.mean(axis=0)
+    lowest = (frame[:3, :3].T @ rotation @ (corners - centre).T)[2].min()
+    matrix = np.eye(4)
+    matrix[:3, :3] = rotation
+    matrix[:3, 3] = frame[:3, :3] @ [0.0, 0.0, height - lowest] + frame[:3, 3] - rotation @ centre
+    return sapien.Pose(matrix)
+
+
+def _fits(interior: Interior, rotation: np.ndarray, corners: np.ndarray) -> bool:
+    """The footprint of the box ``corners``, turned by ``rotation`` and centred over the
+    interior, keeps ``FIT_MARGIN`` from its walls."""
+    local = interior.frame[:3, :3].T @ rotation @ (corners - corners.mean(axis=0)).T
+    margin = interior.half[:, None] - np.abs(local[:2])
+    return bool(np.all(margin >= FIT_MARGIN))
+
+
+def _releases(env, rig: Rig, world: CollisionWorld, interior: Interior) -> list[Release]:
+    """The lowest collision-free release of every orientation, best first: the footprint
+    fits, then the object stands upright, then the lowest, then the least joint motion."""
+    u = env.unwrapped
+    spec = u.episode
+    lo, hi = u.catalog[spec.objects[spec.target].uuid].bounds
+    corners = np.array(np.meshgrid(*zip(lo, hi, strict=True))).reshape(3, -1).T
+    held = u.agent.robot.pose.sp.inv() * u.objects[spec.target].pose.sp
+    grip_inv = held.inv() * rig.kin.fk(rig.start)  # the TCP in the object's frame
+    heights = np.arange(CLEARANCE, interior.height + ABOVE_RIM, HEIGHT_STEP)
+    found = []
+    for rotation, tilt in _orientations(interior, held.to_transformation_matrix()[:3, :3]):
+        fits = _fits(interior, rotation, corners)
+        for height in heights:
+            tcp = _object_pose(interior, rotation, corners, height) * grip_inv
+            q = rig.kin.ik(tcp, seeds=[rig.start], accept=lambda q: not world.in_collision(q))
+            if q is not None:
+                cost = float(np.abs(q - rig.start).sum())
+                found.append(Release(q, tcp, float(height), fits, tilt, cost))
+                break
+    return sorted(found, key=lambda r: (not r.fits, r.tilt > UPRIGHT, r.height, r.cost))
+
+
+def _above(pose: sapien.Pose, dz: float) -> sapien.Pose:
+    return sapien.Pose(pose.p + np.array([0.0, 0.0, dz]), pose.q)
+
+
+def _place_paths(rig: Rig, world: CollisionWorld, release: Release, rim: float) -> Paths | None:
+    """(path to the pre-place pose, descent, retreat) joint paths for one release, or None.
+    The retreat holds still where the open hand cannot move straight up."""
+    kin = rig.kin
+    rise = max(PRE_PLACE, rim + ABOVE_RIM - release.height)
+    q_pre = kin.ik(
+        _above(release.tcp, rise), seeds=[release.q], accept=lambda q: not world.in_collision(q)
+    )
+    if q_pre is None:
+        return None
+    to_pre = plan_joint_path(world, rig.start, q_pre, time_limit=1.0, attempts=2)
+    descend = None if to_pre is None else cartesian_path(kin, q_pre, release.tcp, world)
+    if descend is None:
+        return None
+    name = world.detach(descend[-1])
+    for link in world.gripper_links:  # the open fingers leave the object
+        world.allow(link, name)
+    retreat = cartesian_path(kin, descend[-1], _above(kin.fk(descend[-1]), RETREAT), world)
+    world.attach(name, descend[-1])  # as it was, for the next release
+    return to_pre, descend, descend[-1:] if retreat is None else retreat
+
+
+def _holding_arm(env) -> int:
+    """The arm whose TCP is nearest the target (the one that picked it)."""
+    u = env.unwrapped
+    tcps = u.agent.tcp_positions()[0]
+    target = u.objects[u.episode.target].pose.p[0]
+    return int(torch.linalg.norm(tcps - target, dim=1).argmin())
+
+
+def _timed(rig: Rig, paths: Paths, steps: int) -> np.ndarray:
+    """The place actions of ``paths`` (to the pre-place pose, descent, retreat), sped up by
+    the least of ``SPEEDUPS`` that fits them into ``steps`` (the fastest where none does)."""
+    to_pre, descend, retreat = paths
+    open_, closed = rig.gripper.open, rig.gripper.closed
+    for speedup in SPEEDUPS:
+        limits = JointLimits(rig.limits.velocity * speedup, rig.limits.acceleration * speedup)
+        actions = np.vstack(
+            [
+                rig.actions(time_parametrize(to_pre, limits), closed),
+                rig.actions(time_parametrize(descend, limits), closed),
+                rig.actions(np.repeat(descend[-1:], OPEN_STEPS, axis=0), open_),
+                rig.actions(time_parametrize(retreat, limits), open_),
+            ]
+        )
+        if len(actions) <= steps:
+            break
+    return actions
+
+
+def _steps_left(env) -> int:
+    """Steps left in the episode's horizon."""
+    u = env.unwrapped
+    return u.task.max_episode_steps - int(u.elapsed_steps[0])
+
+
+def plan_place(env) -> np.ndarray | str:
+    """``pd_joint_pos`` actions that place the held target in the goal receptacle from the
+    env's current state, or the failure reason: ``"no_ik"`` (no collision-free release
+    configuration) or ``"no_plan"`` (no collision-free path to the ``MAX_RELEASES`` best).
+    The motion is sped up where needed to leave ``SETTLE_STEPS`` of the episode's horizon."""
+    u = env.unwrapped
+    rig = Rig.from_env(env, _holding_arm(env))
+    world = CollisionWorld.from_env(env, rig.kin)
+    target = f"object_{u.episode.target}"
+    for link in world.gripper_links:
+        world.allow(link, target)
+    world.attach(target, rig.start)
+    interior = goal_interior(env)
+    releases = _releases(env, rig, world, interior)
+    if not releases:
+        return "no_ik"
+    for release in releases[:MAX_RELEASES]:
+        paths = _place_paths(rig, world, release, interior.height)
+        if paths is not None:
+            return _timed(rig, paths, _steps_left(env) - SETTLE_STEPS)
+    return "no_plan"
+
+
+def synthesize_place(env) -> tuple[list[dict[str, bool]], str | None]:
+    """Pick the episode's target and place it in the goal receptacle, both planned, from an
+    env just reset (``pd_joint_pos`` control). Returns the ``PLACE_STAGES`` flags of every
+    step executed (within the horizon) and None on success, else the failure reason:
+    ``"no_ik"`` / ``"no_plan"`` (pick or place), ``"grasp_slipped"`` (not held after the
+    lift) or ``"place_missed"`` (executed, but the target does not rest in the receptacle)."""
+    u = env.unwrapped
+    pick = plan_pick(env)
+    if isinstance(pick, str):
+        return [], pick
+    flags = step_flags(env, pick)
+    if not flags[-1]["lift_pick"] or not bool(u.agent.is_grasping(u.objects[u.episode.target])):
+        return flags, "grasp_slipped"
+    place = plan_place(env)
+    if isinstance(place, str):
+        return flags, place
+    flags += step_flags(env, place[: _steps_left(env)])
+    for _ in range(min(SETTLE_STEPS, _steps_left(env))):  # a dropped object comes to rest
+        if flags[-1]["success"]:
+            break
+        flags += step_flags(env, place[-1:])
+    return flags, None if flags[-1]["success"] else "place_missed"

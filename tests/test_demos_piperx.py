@@ -1,0 +1,118 @@
+"""Planned picks on the PiperX rig (nearest arm first, the other as fallback) and the physics
+check of planned picks on both robots: only the target is pushed, and it rises."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+import torch
+
+from conftest import make_env
+from instructmove_ms.demos import pick
+from instructmove_ms.demos.contacts import FORCE_LIMIT, collisions
+from instructmove_ms.planning import Rig, arm_order
+
+TASK = "PickCategory-InstructMove"
+
+
+@pytest.fixture(scope="module")
+def envs():
+    """One pd_joint_pos env per robot, made when first asked for."""
+    made: dict[str, object] = {}
+
+    def get(robot: str):
+        if robot not in made:
+            made[robot] = make_env(robot_uids=robot, control_mode="pd_joint_pos")
+        return made[robot]
+
+    yield get
+    for env in made.values():
+        env.close()
+
+
+def _target_xyz(env) -> np.ndarray:
+    u = env.unwrapped
+    return u.objects[u.episode.target].pose.p[0].cpu().numpy()
+
+
+def _checked_rollout(env, actions: np.ndarray) -> tuple[dict, float, dict]:
+    """Step through ``actions``; returns the last info, the target's rise and, per robot
+    link and body, the strongest contact force above the limit with anything but the
+    target (at any step)."""
+    z0 = _target_xyz(env)[2]
+    worst: dict[tuple[str, str], float] = {}
+    info = {}
+    for action in actions:
+        _, _, _, _, info = env.step(torch.from_numpy(action)[None])
+        for pair, force in collisions(env).items():
+            worst[pair] = max(force, worst.get(pair, 0.0))
+    return info, float(_target_xyz(env)[2] - z0), worst
+
+
+def _moved_arm(env, actions: np.ndarray) -> int:
+    """The PiperX arm whose joint targets change along ``actions``."""
+    motion = [
+        np.abs(np.diff(actions[:, Rig.from_env(env, k).arm_slots], axis=0)).sum() for k in (0, 1)
+    ]
+    return int(np.argmax(motion))
+
+
+@pytest.mark.parametrize(("robot", "seed"), [("franka", 0), ("piperx", 3), ("piperx", 6)])
+def test_planned_pick_lifts_target_and_touches_nothing_else(envs, robot, seed):
+    env = envs(robot)
+    env.reset(seed=seed)
+    actions = pick.plan_pick(env)
+    assert not isinstance(actions, str), actions
+    assert actions.shape[1] == env.action_space.shape[-1]
+    info, rise, worst = _checked_rollout(env, actions)
+    assert not worst, f"robot pressed on more than {FORCE_LIMIT} N: {worst}"
+    assert rise > 0.05, f"the target rose {rise:.3f} m"
+    assert bool(info["success"][0])
+
+
+def test_piperx_picks_with_the_nearer_arm(envs):
+    env = envs("piperx")
+    for seed, arm in ((3, 1), (6, 0)):  # targets on the right and on the left
+        env.reset(seed=seed)
+        assert arm_order(env, _target_xyz(env))[0] == arm
+        actions = pick.plan_pick(env)
+        assert _moved_arm(env, actions) == arm
+        hold = Rig.from_env(env, 1 - arm)
+        assert np.allclose(actions[:, hold.arm_slots], hold.start, atol=1e-6)
+
+
+def test_piperx_falls_back_to_the_other_arm(envs, monkeypatch):
+    env = envs("piperx")
+    env.reset(seed=3)  # the right arm is nearer
+    plan_arm = pick._plan_arm
+    monkeypatch.setattr(
+        pick, "_plan_arm", lambda e, rig: "no_plan" if rig.arm == 1 else plan_arm(e, rig)
+    )
+    actions = pick.plan_pick(env)
+    assert not isinstance(actions, str), actions
+    assert _moved_arm(env, actions) == 0
+    info, rise, worst = _checked_rollout(env, actions)
+    assert bool(info["success"][0]) and rise > 0.05 and not worst
+
+
+def test_failure_reason_covers_both_arms(envs, monkeypatch):
+    env = envs("piperx")
+    env.reset(seed=3)
+    reasons = iter(("no_ik", "no_plan"))
+    monkeypatch.setattr(pick, "_plan_arm", lambda e, rig: next(reasons))
+    assert pick.plan_pick(env) == "no_plan"
+    monkeypatch.setattr(pick, "_plan_arm", lambda e, rig: "no_ik")
+    assert pick.plan_pick(env) == "no_ik"
+
+
+def test_contact_check_sees_the_hand_pressed_on_the_table(envs):
+    env = envs("franka")
+    env.reset(seed=0)
+    rig = Rig.from_env(env)
+    down = rig.start.copy()
+    down[1], down[3] = 1.5, -0.5  # leans forward: the hand ends below the table top
+    seen: dict[tuple[str, str], float] = {}
+    for action in rig.actions(np.repeat(down[None], 30, axis=0), rig.gripper.open):
+        env.step(torch.from_numpy(action)[None])
+        seen.update(collisions(env))
+    assert any(body == "table" for _, body in seen), seen

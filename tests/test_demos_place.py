@@ -1,0 +1,98 @@
+"""Planned PlaceA2B demos on the Franka: the target ends at rest in the goal receptacle,
+released, within the horizon; a recorded demo replays to RGB under delta joint control."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+
+import gymnasium as gym
+import h5py
+import numpy as np
+import pytest
+from mani_skill.utils.wrappers import RecordEpisode
+
+from instructmove_ms.demos.place import PLACE_STAGES, goal_interior, synthesize_place
+
+TASK, ROBOT = "PlaceA2B-InstructMove", "franka"
+STEM = f"{TASK}_{ROBOT}"
+SEEDS = (1, 3)
+
+
+def _outcome(env, flags, reason) -> dict:
+    """What the test checks of a finished episode, read off the scene itself."""
+    u = env.unwrapped
+    target = u.objects[u.episode.target]
+    pose = u.agent.robot.pose.sp.inv() * target.pose.sp
+    interior = goal_interior(env)
+    local = np.linalg.inv(interior.frame) @ np.append(pose.p, 1.0)
+    fingers = u.agent.robot.get_qpos()[0, -2:].numpy()
+    return {
+        "flags": flags,
+        "reason": reason,
+        "local": local[:3],
+        "half": interior.half,
+        "speed": float(np.linalg.norm(target.linear_velocity[0].numpy())),
+        "grasped": bool(u.agent.is_grasping(target)[0]),
+        "fingers": fingers,
+    }
+
+
+@pytest.fixture(scope="module")
+def recorded(tmp_path_factory):
+    """Synthesized demos of ``SEEDS``, recorded; returns the folder and each one's outcome."""
+    out = tmp_path_factory.mktemp("place")
+    env = gym.make(
+        TASK, robot_uids=ROBOT, obs_mode="state", control_mode="pd_joint_pos", render_backend="cpu"
+    )
+    env = RecordEpisode(env, str(out), trajectory_name=STEM, save_video=False, save_on_reset=False)
+    outcomes = []
+    for seed in SEEDS:
+        env.reset(seed=seed)
+        flags, reason = synthesize_place(env)
+        outcomes.append(_outcome(env, flags, reason))
+        env.flush_trajectory(save=reason is None)
+    env.close()
+    return out, outcomes
+
+
+@pytest.mark.parametrize("k", range(len(SEEDS)))
+def test_place_succeeds_within_the_horizon(recorded, k):
+    flags, reason = recorded[1][k]["flags"], recorded[1][k]["reason"]
+    assert reason is None and flags[-1]["success"]
+    assert len(flags) <= 400 and set(flags[0]) == set(PLACE_STAGES)
+    first = [next(i for i, f in enumerate(flags) if f[s]) for s in PLACE_STAGES[:4]]
+    assert first == sorted(first)  # reach_pick, lift_pick, reach_place, place in order
+
+
+@pytest.mark.parametrize("k", range(len(SEEDS)))
+def test_target_rests_in_the_goal_receptacle_released(recorded, k):
+    outcome = recorded[1][k]
+    local = outcome["local"]  # the target's bottom centre relative to the interior's floor
+    assert np.all(np.abs(local[:2]) <= outcome["half"])
+    assert -0.01 < local[2] < 0.03
+    assert outcome["speed"] < 0.05
+    assert not outcome["grasped"]
+    assert np.all(outcome["fingers"] > 0.03)  # the gripper stands open
+
+
+def test_replay_to_rgb_with_delta_control_reproduces_success(recorded):
+    out, _ = recorded
+    result = subprocess.run(
+        [sys.executable, "-m", "mani_skill.trajectory.replay_trajectory"]
+        + ["--traj-path", f"{STEM}.h5", "-o", "rgb", "-c", "pd_joint_delta_pos"]
+        + ["--save-traj", "-b", "physx_cpu", "--count", "1"],
+        cwd=out,
+        capture_output=True,
+        text=True,
+        timeout=600,
+    )
+    assert result.returncode == 0, result.stderr[-2000:]
+    converted = out / f"{STEM}.rgb.pd_joint_delta_pos.physx_cpu.h5"
+    meta = json.loads(converted.with_suffix(".json").read_text())
+    assert [e["reset_kwargs"]["seed"] for e in meta["episodes"]] == [SEEDS[0]]
+    with h5py.File(converted) as f:
+        assert bool(f["traj_0/success"][-1])
+        assert f["traj_0/actions"].shape[1] == 8
+        assert f["traj_0/obs/sensor_data/ext1_camera/rgb"].shape[0] > 0
