@@ -4,10 +4,13 @@ A policy is a class with ``get_obs_mode()``, ``get_control_mode()``, ``reset(obs
 ``act(obs)``. Privileged reference policies also get ``bind(env)``, which the evaluator
 calls before each episode, to read the scene (a learned policy never does).
 
-- ``OraclePolicy``: goes for the instruction's target (privileged), grasps it top-down and
-  lifts it; for PlaceA2B it then carries it over the goal receptacle and opens.
-- ``BlindPolicy``: the same skill on a random candidate: what a policy that ignores the
-  language can score (about 1/|G|).
+- ``PlannerOraclePolicy`` (``oracle``): plays the demo generator's collision-free planned
+  pick (and place) of the instruction's target (privileged): the upper bound.
+- ``OraclePolicy`` (``scripted``): a scripted top-down servo to the instruction's target
+  (privileged) that grasps and lifts it; for PlaceA2B it then carries it over the goal
+  receptacle and opens.
+- ``BlindPolicy`` (``blind``): the scripted skill on a random candidate: what a policy that
+  ignores the language can score (about 1/|G|).
 - ``RandomPolicy``: random actions.
 """
 
@@ -118,4 +121,72 @@ class BlindPolicy(OraclePolicy):
         return int(self.rng.choice(spec.candidates)), dest
 
 
-REFERENCE_POLICIES = {"oracle": OraclePolicy, "blind": BlindPolicy, "random": RandomPolicy}
+class PlannerOraclePolicy:
+    """Privileged: plays the demo generator's planned motions for the instruction's target
+    (``pd_joint_pos``): the planned pick, then for PlaceA2B the place planned from the state
+    the pick left. A pick that ends without the target in the hand is planned again from
+    where it left off (``PICK_ATTEMPTS`` in all). A phase that finds no plan, and every
+    episode without a target (the generic, empty and absent-object conditions), leaves the
+    robot holding still."""
+
+    PICK_ATTEMPTS = 3
+
+    def __init__(self, seed: int = 0, obs_mode: str = "state") -> None:
+        self.obs_mode = obs_mode
+
+    def get_obs_mode(self) -> str:
+        return self.obs_mode
+
+    def get_control_mode(self) -> str:
+        return "pd_joint_pos"
+
+    def bind(self, env) -> None:
+        self.env = env
+
+    def reset(self, obs) -> None:
+        from .demos.pick import plan_pick
+        from .demos.place import plan_place
+        from .planning.rig import Rig
+
+        spec = self.env.unwrapped.episode
+        self.plan_pick = plan_pick
+        self.phases = [] if spec.target < 0 else [plan_pick]
+        if spec.target >= 0 and spec.goal_destination >= 0:
+            self.phases.append(plan_place)
+        self.picks = 0
+        self.queue: list[np.ndarray] = []
+        self.last = Rig.from_env(self.env).hold.astype(np.float32)
+
+    def _holding(self) -> bool:
+        u = self.env.unwrapped
+        return bool(u.agent.is_grasping(u.objects[u.episode.target])[0])
+
+    def _plan_next(self) -> None:
+        """Plan the next phase into the queue (a pick again if the last one lost the target)."""
+        if 0 < self.picks < self.PICK_ATTEMPTS and not self._holding():
+            self.phases.insert(0, self.plan_pick)
+        if not self.phases:  # the pick held: nothing left to do
+            self.picks = self.PICK_ATTEMPTS
+            return
+        phase = self.phases.pop(0)
+        self.picks = self.picks + 1 if phase is self.plan_pick else self.PICK_ATTEMPTS
+        plan = phase(self.env)
+        if isinstance(plan, str):  # no plan: stay where the robot is
+            self.phases = []
+        else:
+            self.queue = list(plan)
+
+    def act(self, obs) -> torch.Tensor:
+        if not self.queue and (self.phases or 0 < self.picks < self.PICK_ATTEMPTS):
+            self._plan_next()
+        if self.queue:
+            self.last = self.queue.pop(0)
+        return torch.from_numpy(self.last)[None]
+
+
+REFERENCE_POLICIES = {
+    "oracle": PlannerOraclePolicy,
+    "scripted": OraclePolicy,
+    "blind": BlindPolicy,
+    "random": RandomPolicy,
+}

@@ -53,7 +53,7 @@ def test_oracle_beats_blind_and_its_config_reproduces_the_set(tmp_path, capsys):
     reset = written["episodes"][3]["reset_kwargs"]
     assert reset["options"]["episode"]["seed"] == reset["seed"]
     assert EvaluatorConfig.load(config) == EvaluatorConfig.load(tmp_path / "a" / "config.json")
-    args = ["eval", "--config", str(config), "--policy", "oracle", "--out", str(tmp_path / "b")]
+    args = ["eval", "--config", str(config), "--policy", "scripted", "--out", str(tmp_path / "b")]
     assert main(args) == 0
     capsys.readouterr()
     for name in ("episodes.jsonl", "episode_results.json", "average_metrics.json"):
