@@ -194,6 +194,17 @@ def _cmd_episodes_show(args: argparse.Namespace) -> int:
     return 0
 
 
+def _cmd_quickstart(args: argparse.Namespace) -> int:
+    from pathlib import Path
+
+    from instructmove_ms.quickstart import QuickstartSettings, run
+
+    settings = QuickstartSettings(args.demos, args.episodes, args.videos, args.workers)
+    report = run(Path(args.out), settings)
+    print(f"\nreport: {report}")
+    return 0
+
+
 def _cmd_demos_generate(args: argparse.Namespace) -> int:
     import instructmove_ms  # noqa: F401  (registration)
     from instructmove_ms.demos.generate import generate
@@ -295,6 +306,13 @@ def _cmd_eval(args: argparse.Namespace) -> int:
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(prog="instructmove", description=__doc__)
     sub = parser.add_subparsers(dest="command", required=True)
+    p = sub.add_parser("quickstart", help="demos, MCAP, evaluation and report end to end")
+    p.add_argument("--out", default="out/quickstart", help="output folder (resumable)")
+    p.add_argument("--demos", type=int, default=2, help="planned demos per family")
+    p.add_argument("--episodes", type=int, default=5, help="held-out episodes per policy")
+    p.add_argument("--videos", type=int, default=1, help="oracle videos per family")
+    p.add_argument("--workers", type=int, default=2, help="processes for demos and MCAP")
+    p.set_defaults(func=_cmd_quickstart)
     p = sub.add_parser("envs", help="list the registered InstructMove envs")
     p.set_defaults(func=_cmd_envs)
     p = sub.add_parser("episode", help="print the episode spec a seed gives, as JSON")
@@ -334,7 +352,9 @@ def build_parser() -> argparse.ArgumentParser:
     p = sub.add_parser("eval", help="evaluate a policy on a held-out set or evaluator config")
     p.add_argument("--task", default=None, help="env id (not with --config)")
     p.add_argument("--split", default="seen", help="seen, unseen_instance or unseen_category")
-    p.add_argument("--policy", help="oracle, blind, random, ws://HOST:PORT or MODULE:CLASS")
+    p.add_argument(
+        "--policy", help="oracle, scripted, blind, random, ws://HOST:PORT or MODULE:CLASS"
+    )
     p.add_argument("--out", help="folder for the reports (resumable)")
     p.add_argument("--robot", default=None, help="robot uid (default: the task's)")
     p.add_argument(
