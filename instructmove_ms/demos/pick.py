@@ -148,11 +148,15 @@ def plan_pick(env) -> np.ndarray | str:
     """``pd_joint_pos`` actions that pick up the episode's target from the env's current
     state, or the failure reason: ``"no_ik"`` (no collision-free pre-grasp configuration for
     any grasp with any arm) or ``"no_plan"`` (no collision-free path for any grasp with
-    one). Arms are tried nearest the target first."""
+    one). Arms are tried nearest the target first; for an episode with a goal receptacle,
+    nearest the middle between both, so that the arm can carry the target there."""
     u = env.unwrapped
-    target = u.agent.robot.pose.sp.inv() * u.objects[u.episode.target].pose.sp
+    spec, base = u.episode, u.agent.robot.pose.sp.inv()
+    point = (base * u.objects[spec.target].pose.sp).p
+    if spec.goal_destination >= 0:
+        point = (point + (base * u.objects[spec.goal_destination].pose.sp).p) / 2
     reasons = []
-    for arm in arm_order(env, target.p):
+    for arm in arm_order(env, point):
         actions = _plan_arm(env, Rig.from_env(env, arm))
         if not isinstance(actions, str):
             return actions
