@@ -24,7 +24,7 @@ def test_oracle_scores_on_the_stored_set(env_id, robot, tmp_path):
     (group,) = summary["groups"]
     assert group["robot"] == robot and group["episodes"] == EPISODES
     assert summary["errors"] == 0
-    # measured on 100-episode slices: S 0.90-0.97 by family (a few targets have no plan)
+    # a few targets have no collision-free plan: S is not always 1
     assert group["stage_score"] >= 0.85 and group["grounding_error"] == 0.0
 
 

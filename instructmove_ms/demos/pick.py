@@ -110,38 +110,37 @@ def _lift(rig: Rig, world: CollisionWorld, q: np.ndarray, grasp: sapien.Pose) ->
 
 def _plan_arm(env, rig: Rig) -> np.ndarray | str:
     """The pick actions with ``rig``'s arm, or ``"no_ik"`` / ``"no_plan"``. The fingers open
-    ``FINGER_CLEARANCE`` wider than the grasped width on each side, or fully where that
-    collides (a finger inside a container)."""
+    ``FINGER_CLEARANCE`` wider than the grasped width on each side; fully only where no
+    candidate works so (a finger inside a container)."""
     free = CollisionWorld.from_env(env, rig.kin)
+    ranked = list(islice(candidates(env, rig, free), MAX_CANDIDATES))
+    if not ranked:
+        return "no_ik"
     start, closed = rig.start, rig.gripper.closed
-    reason = "no_ik"
-    for cand in islice(candidates(env, rig, free), MAX_CANDIDATES):
-        reason = "no_plan"
-        narrow = min(cand.width + 2.0 * FINGER_CLEARANCE, rig.gripper.max_width)
-        for width in dict.fromkeys((narrow, rig.gripper.max_width)):
+    for wide in (False, True):
+        for cand in ranked:
+            width = rig.gripper.max_width if wide else cand.width + 2.0 * FINGER_CLEARANCE
             paths = _grasp_and_lift(env, rig.opened(width), cand)
-            if paths is not None:
-                break
-        else:
-            continue
-        to_pre = plan_joint_path(free, start, cand.q_pre, time_limit=1.0, attempts=2)
-        if to_pre is None:
-            continue
-        descend, lift = paths
-        open_ = rig.gripper.value(width)
-        return np.vstack(
-            [
-                rig.actions(np.repeat(start[None], SETTLE, axis=0), open_),
-                rig.actions(time_parametrize(to_pre, rig.limits), open_),
-                rig.actions(np.repeat(to_pre[-1:], PAUSE, axis=0), open_),
-                rig.actions(time_parametrize(descend, rig.limits), open_),
-                rig.actions(np.repeat(descend[-1:], PAUSE, axis=0), open_),
-                rig.actions(np.repeat(descend[-1:], CLOSE, axis=0), closed),
-                rig.actions(time_parametrize(lift, rig.limits), closed),
-                rig.actions(np.repeat(lift[-1:], HOLD, axis=0), closed),
-            ]
-        )
-    return reason
+            if paths is None:
+                continue
+            to_pre = plan_joint_path(free, start, cand.q_pre, time_limit=1.0, attempts=2)
+            if to_pre is None:
+                continue
+            descend, lift = paths
+            open_ = rig.gripper.value(width)
+            return np.vstack(
+                [
+                    rig.actions(np.repeat(start[None], SETTLE, axis=0), open_),
+                    rig.actions(time_parametrize(to_pre, rig.limits), open_),
+                    rig.actions(np.repeat(to_pre[-1:], PAUSE, axis=0), open_),
+                    rig.actions(time_parametrize(descend, rig.limits), open_),
+                    rig.actions(np.repeat(descend[-1:], PAUSE, axis=0), open_),
+                    rig.actions(np.repeat(descend[-1:], CLOSE, axis=0), closed),
+                    rig.actions(time_parametrize(lift, rig.limits), closed),
+                    rig.actions(np.repeat(lift[-1:], HOLD, axis=0), closed),
+                ]
+            )
+    return "no_plan"
 
 
 def plan_pick(env) -> np.ndarray | str:
