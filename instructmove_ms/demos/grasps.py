@@ -1,6 +1,6 @@
-"""Grasp candidates for a planned pick: the target's grasp affordances as TCP poses, leaned
-away from the arm where it cannot reach them upright, ranked by IK feasibility and
-joint-space cost."""
+"""Grasp candidates for a planned pick: the target's grasp affordances as TCP poses (both
+closing signs, a few turns about the approach), leaned away from the arm where it cannot
+reach them upright, ranked by IK feasibility and joint-space cost."""
 
 from __future__ import annotations
 
@@ -45,7 +45,7 @@ class GraspFrame:
 class Candidate:
     """A grasp reachable from the rig's start: the TCP at the grasp (base frame), the
     object's width between the fingers, a collision-free configuration ``q_pre`` at the
-    pre-grasp and its cost (summed joint motion from the start, plus ``OFF_CENTRE_COST``)."""
+    pre-grasp and its cost (summed joint motion from the start plus the frame's cost)."""
 
     tcp: sapien.Pose
     width: float

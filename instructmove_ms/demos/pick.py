@@ -36,7 +36,7 @@ FINGER_CLEARANCE = 0.015  # metres between each open finger and the object at th
 #: Steps: before the plan, at the pre-grasp and at the grasp (the arm catches up with its
 #: lagging PD targets before it goes on), closing the gripper, at the top.
 SETTLE, PAUSE, CLOSE, HOLD = 5, 10, 20, 15
-RAISE_STEP = 0.0015  # metres a grasp whose fingers touch the table is raised at a time
+RAISE_STEP = 0.0015  # metres a grasp touching the table (or a container's floor) is raised
 #: A grasp may rise until the TCP is this much short of the task's reach distance from the
 #: object's box (the PD lags the targets a little).
 REACH_MARGIN = 0.005

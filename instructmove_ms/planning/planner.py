@@ -16,6 +16,9 @@ from .collision import CollisionWorld
 from .kinematics import ArmKinematics
 
 ou.setLogLevel(ou.LOG_WARN)
+# OMPL seeds every sampler from one process-wide seed: fixed, a process that plans the same
+# problems in the same order gets the same paths.
+ou.RNG.setSeed(1)
 
 #: Franka Panda joint limits from the datasheet: velocity (rad/s) and acceleration (rad/s^2).
 FRANKA_VELOCITY = np.array([2.175, 2.175, 2.175, 2.175, 2.61, 2.61, 2.61])
