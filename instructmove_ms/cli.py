@@ -353,7 +353,8 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--task", default=None, help="env id (not with --config)")
     p.add_argument("--split", default="seen", help="seen, unseen_instance or unseen_category")
     p.add_argument(
-        "--policy", help="oracle, scripted, blind, random, ws://HOST:PORT or MODULE:CLASS"
+        "--policy",
+        help="oracle, blind, scripted, scripted-blind, random, ws://HOST:PORT or MODULE:CLASS",
     )
     p.add_argument("--out", help="folder for the reports (resumable)")
     p.add_argument("--robot", default=None, help="robot uid (default: the task's)")

@@ -9,12 +9,17 @@ calls before each episode, to read the scene (a learned policy never does).
 - ``OraclePolicy`` (``scripted``): a scripted top-down servo to the instruction's target
   (privileged) that grasps and lifts it; for PlaceA2B it then carries it over the goal
   receptacle and opens.
-- ``BlindPolicy`` (``blind``): the scripted skill on a random candidate: what a policy that
-  ignores the language can score (about 1/|G|).
+- ``PlannerBlindPolicy`` (``blind``): the oracle's planned motions for a random candidate:
+  what a policy that ignores the language can score (about 1/|G|).
+- ``BlindPolicy`` (``scripted-blind``): the scripted skill on a random candidate.
 - ``RandomPolicy``: random actions.
 """
 
 from __future__ import annotations
+
+from collections.abc import Iterator
+from contextlib import contextmanager
+from dataclasses import replace
 
 import numpy as np
 import torch
@@ -148,18 +153,22 @@ class PlannerOraclePolicy:
         from .demos.place import plan_place
         from .planning.rig import Rig
 
-        spec = self.env.unwrapped.episode
+        self.obj, self.dest = self.choose(self.env.unwrapped.episode)
         self.plan_pick = plan_pick
-        self.phases = [] if spec.target < 0 else [plan_pick]
-        if spec.target >= 0 and spec.goal_destination >= 0:
+        self.phases = [] if self.obj < 0 else [plan_pick]
+        if self.obj >= 0 and self.dest >= 0:
             self.phases.append(plan_place)
         self.picks = 0
         self.queue: list[np.ndarray] = []
         self.last = Rig.from_env(self.env).hold.astype(np.float32)
 
+    def choose(self, spec) -> tuple[int, int]:
+        """(object, receptacle or -1) to go for: the instruction's goal."""
+        return spec.target, spec.goal_destination
+
     def _holding(self) -> bool:
         u = self.env.unwrapped
-        return bool(u.agent.is_grasping(u.objects[u.episode.target])[0])
+        return bool(u.agent.is_grasping(u.objects[self.obj])[0])
 
     def _plan_next(self) -> None:
         """Plan the next phase into the queue (a pick again if the last one lost the target)."""
@@ -170,7 +179,8 @@ class PlannerOraclePolicy:
             return
         phase = self.phases.pop(0)
         self.picks = self.picks + 1 if phase is self.plan_pick else self.PICK_ATTEMPTS
-        plan = phase(self.env)
+        with _aimed_at(self.env, self.obj, self.dest):
+            plan = phase(self.env)
         if isinstance(plan, str):  # no plan: stay where the robot is
             self.phases = []
         else:
@@ -184,9 +194,36 @@ class PlannerOraclePolicy:
         return torch.from_numpy(self.last)[None]
 
 
+class PlannerBlindPolicy(PlannerOraclePolicy):
+    """The planner oracle's motions for a random candidate (and receptacle): a policy with
+    perfect control that ignores the language, which scores about 1/|G|."""
+
+    def __init__(self, seed: int = 0, obs_mode: str = "state") -> None:
+        super().__init__(seed, obs_mode)
+        self.rng = np.random.default_rng(seed)
+
+    def choose(self, spec) -> tuple[int, int]:
+        dest = int(self.rng.choice(spec.destinations)) if spec.destinations else -1
+        return int(self.rng.choice(spec.candidates)), dest
+
+
+@contextmanager
+def _aimed_at(env, obj: int, dest: int) -> Iterator[None]:
+    """The planners plan for the episode's target and goal receptacle: let them see ``obj``
+    and ``dest`` as those while they plan (nothing steps meanwhile)."""
+    u = env.unwrapped
+    real = u.episodes[0]
+    u.episodes[0] = replace(real, target=obj, goal_destination=dest)
+    try:
+        yield
+    finally:
+        u.episodes[0] = real
+
+
 REFERENCE_POLICIES = {
     "oracle": PlannerOraclePolicy,
     "scripted": OraclePolicy,
-    "blind": BlindPolicy,
+    "blind": PlannerBlindPolicy,
+    "scripted-blind": BlindPolicy,
     "random": RandomPolicy,
 }

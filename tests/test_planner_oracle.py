@@ -5,7 +5,7 @@ from __future__ import annotations
 import pytest
 
 from instructmove_ms.evaluation import evaluate
-from instructmove_ms.policies import PlannerOraclePolicy
+from instructmove_ms.policies import PlannerBlindPolicy, PlannerOraclePolicy
 from instructmove_ms.tasks import TASKS
 
 EPISODES = 8
@@ -36,3 +36,15 @@ def test_oracle_without_a_target_holds_still(tmp_path):
     )
     (group,) = summary["groups"]
     assert group["any_reach"] == 0.0 and group["any_lift"] == 0.0
+
+
+def test_blind_planner_goes_for_a_random_candidate(tmp_path):
+    """Perfect control without the language: it reaches some candidate every time, the
+    instruction's target only by chance (the misses are grounding errors)."""
+    policy = PlannerBlindPolicy(seed=3)
+    task = "PickSpatial-InstructMove"
+    summary = evaluate(policy, task, "seen", tmp_path, robot="franka", episodes=EPISODES)
+    (group,) = summary["groups"]
+    assert group["any_reach"] >= 0.85
+    assert 0.0 < group["reach"] < 1.0
+    assert group["grounding_error"] == pytest.approx(group["any_reach"] - group["reach"])
