@@ -163,13 +163,14 @@ def plan_pick(env) -> np.ndarray | str:
     return "no_plan" if "no_plan" in reasons else "no_ik"
 
 
-def rollout(env, actions: np.ndarray) -> list[dict[str, bool]]:
-    """Step ``env`` through ``actions``; returns each step's stage flags (reach, lift,
-    success) of the single sub-scene; the last one is the outcome. Stops early at truncation."""
+def rollout(env, actions: np.ndarray, stages: tuple[str, ...] = STAGES) -> list[dict[str, bool]]:
+    """Step ``env`` through ``actions``; returns each step's ``stages`` flags (default: reach,
+    lift, success) of the single sub-scene; the last one is the outcome. Stops early at
+    truncation."""
     flags = []
     for action in actions:
         _, _, _, truncated, info = env.step(torch.from_numpy(action)[None])
-        flags.append({k: bool(info[k][0]) for k in STAGES})
+        flags.append({k: bool(info[k][0]) for k in stages})
         if bool(truncated):
             break
     return flags

@@ -18,7 +18,7 @@ import numpy as np
 import sapien
 import torch
 
-from instructmove_ms.demos.pick import plan_pick
+from instructmove_ms.demos.pick import plan_pick, rollout
 from instructmove_ms.planning import (
     CollisionWorld,
     JointLimits,
@@ -71,18 +71,6 @@ class Release:
     fits: bool
     tilt: float
     cost: float
-
-
-def step_flags(env, actions: np.ndarray) -> list[dict[str, bool]]:
-    """Step ``env`` through ``actions``; returns each step's ``PLACE_STAGES`` flags of the
-    single sub-scene. Stops early at truncation."""
-    flags = []
-    for action in actions:
-        _, _, _, truncated, info = env.step(torch.from_numpy(action)[None])
-        flags.append({k: bool(info[k][0]) for k in PLACE_STAGES})
-        if bool(truncated):
-            break
-    return flags
 
 
 def goal_interior(env) -> Interior:
@@ -270,15 +258,15 @@ def synthesize_place(env) -> tuple[list[dict[str, bool]], str | None]:
     pick = plan_pick(env)
     if isinstance(pick, str):
         return [], pick
-    flags = step_flags(env, pick)
+    flags = rollout(env, pick, PLACE_STAGES)
     if not flags[-1]["lift_pick"] or not bool(u.agent.is_grasping(u.objects[u.episode.target])):
         return flags, "grasp_slipped"
     place = plan_place(env)
     if isinstance(place, str):
         return flags, place
-    flags += step_flags(env, place[: _steps_left(env)])
+    flags += rollout(env, place[: _steps_left(env)], PLACE_STAGES)
     for _ in range(min(SETTLE_STEPS, _steps_left(env))):  # a dropped object comes to rest
         if flags[-1]["success"]:
             break
-        flags += step_flags(env, place[-1:])
+        flags += rollout(env, place[-1:], PLACE_STAGES)
     return flags, None if flags[-1]["success"] else "place_missed"
