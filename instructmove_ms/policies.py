@@ -127,12 +127,13 @@ class BlindPolicy(OraclePolicy):
 
 
 class PlannerOraclePolicy:
-    """Privileged: plays the demo generator's planned motions for the instruction's target
-    (``pd_joint_pos``): the planned pick, then for PlaceA2B the place planned from the state
-    the pick left. A pick that ends without the target in the hand is planned again from
-    where it left off (``PICK_ATTEMPTS`` in all). A phase that finds no plan, and every
-    episode without a target (the generic, empty and absent-object conditions), leaves the
-    robot holding still."""
+    """Privileged: plays the demo generator's planned motions (``demos.script``) for the
+    instruction's target (``pd_joint_pos``): the pick, then for PlaceA2B the place (or a
+    relay between a dual-arm rig's arms first), each planned from the state the last one
+    left. A pick that ends without the target in the hand is planned again
+    (``PICK_ATTEMPTS`` in all). A phase that finds no plan, and every episode without a
+    target (the generic, empty and absent-object conditions), leaves the robot holding
+    still."""
 
     PICK_ATTEMPTS = 3
 
@@ -149,16 +150,11 @@ class PlannerOraclePolicy:
         self.env = env
 
     def reset(self, obs) -> None:
-        from .demos.pick import plan_pick
-        from .demos.place import plan_place
+        from .demos.script import MotionScript
         from .planning.rig import Rig
 
         self.obj, self.dest = self.choose(self.env.unwrapped.episode)
-        self.plan_pick = plan_pick
-        self.phases = [] if self.obj < 0 else [plan_pick]
-        if self.obj >= 0 and self.dest >= 0:
-            self.phases.append(plan_place)
-        self.picks = 0
+        self.script = MotionScript(self.PICK_ATTEMPTS, done=self.obj < 0)
         self.queue: list[np.ndarray] = []
         self.last = Rig.from_env(self.env).hold.astype(np.float32)
 
@@ -166,29 +162,12 @@ class PlannerOraclePolicy:
         """(object, receptacle or -1) to go for: the instruction's goal."""
         return spec.target, spec.goal_destination
 
-    def _holding(self) -> bool:
-        u = self.env.unwrapped
-        return bool(u.agent.is_grasping(u.objects[self.obj])[0])
-
-    def _plan_next(self) -> None:
-        """Plan the next phase into the queue (a pick again if the last one lost the target)."""
-        if 0 < self.picks < self.PICK_ATTEMPTS and not self._holding():
-            self.phases.insert(0, self.plan_pick)
-        if not self.phases:  # the pick held: nothing left to do
-            self.picks = self.PICK_ATTEMPTS
-            return
-        phase = self.phases.pop(0)
-        self.picks = self.picks + 1 if phase is self.plan_pick else self.PICK_ATTEMPTS
-        with _aimed_at(self.env, self.obj, self.dest):
-            plan = phase(self.env)
-        if isinstance(plan, str):  # no plan: stay where the robot is
-            self.phases = []
-        else:
-            self.queue = list(plan)
-
     def act(self, obs) -> torch.Tensor:
-        if not self.queue and (self.phases or 0 < self.picks < self.PICK_ATTEMPTS):
-            self._plan_next()
+        if not self.queue and not self.script.done:
+            with _aimed_at(self.env, self.obj, self.dest):
+                motion = self.script.next(self.env)
+            if motion is not None and not isinstance(motion, str):
+                self.queue = list(motion)
         if self.queue:
             self.last = self.queue.pop(0)
         return torch.from_numpy(self.last)[None]

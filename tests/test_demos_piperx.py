@@ -86,7 +86,9 @@ def test_piperx_falls_back_to_the_other_arm(envs, monkeypatch):
     env.reset(seed=3)  # the right arm is nearer
     plan_arm = pick._plan_arm
     monkeypatch.setattr(
-        pick, "_plan_arm", lambda e, rig: "no_plan" if rig.arm == 1 else plan_arm(e, rig)
+        pick,
+        "_plan_arm",
+        lambda e, rig, speedup: "no_plan" if rig.arm == 1 else plan_arm(e, rig, speedup),
     )
     actions = pick.plan_pick(env)
     assert not isinstance(actions, str), actions
@@ -99,9 +101,9 @@ def test_failure_reason_covers_both_arms(envs, monkeypatch):
     env = envs("piperx")
     env.reset(seed=3)
     reasons = iter(("no_ik", "no_plan"))
-    monkeypatch.setattr(pick, "_plan_arm", lambda e, rig: next(reasons))
+    monkeypatch.setattr(pick, "_plan_arm", lambda e, rig, speedup: next(reasons))
     assert pick.plan_pick(env) == "no_plan"
-    monkeypatch.setattr(pick, "_plan_arm", lambda e, rig: "no_ik")
+    monkeypatch.setattr(pick, "_plan_arm", lambda e, rig, speedup: "no_ik")
     assert pick.plan_pick(env) == "no_ik"
 
 

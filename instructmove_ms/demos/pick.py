@@ -9,6 +9,7 @@ arm of a rig holds still.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from itertools import islice
 
 import numpy as np
@@ -41,6 +42,9 @@ RAISE_STEP = 0.0015  # metres a grasp touching the table (or a container's floor
 #: object's box (the PD lags the targets a little).
 REACH_MARGIN = 0.005
 MAX_CANDIDATES = 30  # grasp candidates tried per arm
+#: Metres the fingertips reach at least below the target's top (a flat object grasped with a
+#: leaned hand, whose fingers cannot go lower without touching the table).
+MIN_OVERLAP = 0.006
 STAGES = ("reach", "lift", "success")
 
 
@@ -52,8 +56,10 @@ def _grasp_height(env, rig: Rig, world: CollisionWorld, cand: Candidate) -> sapi
     """The candidate's grasp raised by the least multiple of ``RAISE_STEP`` that keeps the
     hand off the table and the target (a finger inside a low container), or None where that
     configuration touches anything else, the TCP would no longer reach the target's box
-    (``REACH_MARGIN``) or the fingertips would end above the affordance's grasp centre."""
+    (``REACH_MARGIN``) or the fingertips would end above both the affordance's grasp centre
+    and ``MIN_OVERLAP`` below the target's top."""
     pose, lo, hi = target_box(env)
+    top = (pose * sapien.Pose(hi)).p[2]
     reach = env.unwrapped.task.thresholds.reach - REACH_MARGIN
     below = {"table", f"object_{env.unwrapped.episode.target}"}
     grasp = cand.tcp
@@ -61,7 +67,7 @@ def _grasp_height(env, rig: Rig, world: CollisionWorld, cand: Candidate) -> sapi
         local = (pose.inv() * grasp).p
         outside = np.linalg.norm(np.maximum(np.maximum(lo - local, local - hi), 0.0))
         tip = back_off(grasp, -rig.tip_depth).p[2]
-        if outside > reach or tip > cand.tcp.p[2]:
+        if outside > reach or tip > max(cand.tcp.p[2], top - MIN_OVERLAP):
             return None
         q = rig.kin.ik(grasp, seeds=[cand.q_pre], num_random=0)
         if q is None:
@@ -108,22 +114,24 @@ def _lift(rig: Rig, world: CollisionWorld, q: np.ndarray, grasp: sapien.Pose) ->
     return best
 
 
-def _plan_arm(env, rig: Rig) -> np.ndarray | str:
+def _plan_arm(env, rig: Rig, speedup: float) -> np.ndarray | str:
     """The pick actions with ``rig``'s arm, or ``"no_ik"`` / ``"no_plan"``. The fingers open
     ``FINGER_CLEARANCE`` wider than the grasped width on each side; fully only where no
-    candidate works so (a finger inside a container)."""
+    candidate works so (a finger inside a container). Motions run ``speedup`` times the
+    rig's joint limits."""
     free = CollisionWorld.from_env(env, rig.kin)
     ranked = list(islice(candidates(env, rig, free), MAX_CANDIDATES))
     if not ranked:
         return "no_ik"
     start, closed = rig.start, rig.gripper.closed
+    limits = rig.limits.faster(speedup)
     for wide in (False, True):
         for cand in ranked:
             width = rig.gripper.max_width if wide else cand.width + 2.0 * FINGER_CLEARANCE
             paths = _grasp_and_lift(env, rig.opened(width), cand)
             if paths is None:
                 continue
-            to_pre = plan_joint_path(free, start, cand.q_pre, time_limit=1.0, attempts=2)
+            to_pre = plan_joint_path(free, start, cand.q_pre)
             if to_pre is None:
                 continue
             descend, lift = paths
@@ -131,24 +139,25 @@ def _plan_arm(env, rig: Rig) -> np.ndarray | str:
             return np.vstack(
                 [
                     rig.actions(np.repeat(start[None], SETTLE, axis=0), open_),
-                    rig.actions(time_parametrize(to_pre, rig.limits), open_),
+                    rig.actions(time_parametrize(to_pre, limits), open_),
                     rig.actions(np.repeat(to_pre[-1:], PAUSE, axis=0), open_),
-                    rig.actions(time_parametrize(descend, rig.limits), open_),
+                    rig.actions(time_parametrize(descend, limits), open_),
                     rig.actions(np.repeat(descend[-1:], PAUSE, axis=0), open_),
                     rig.actions(np.repeat(descend[-1:], CLOSE, axis=0), closed),
-                    rig.actions(time_parametrize(lift, rig.limits), closed),
+                    rig.actions(time_parametrize(lift, limits), closed),
                     rig.actions(np.repeat(lift[-1:], HOLD, axis=0), closed),
                 ]
             )
     return "no_plan"
 
 
-def plan_pick(env) -> np.ndarray | str:
+def plan_pick(env, arms: Sequence[int] | None = None, speedup: float = 1.0) -> np.ndarray | str:
     """``pd_joint_pos`` actions that pick up the episode's target from the env's current
     state, or the failure reason: ``"no_ik"`` (no collision-free pre-grasp configuration for
     any grasp with any arm) or ``"no_plan"`` (no collision-free path for any grasp with
-    one). Arms are tried nearest the target first; for an episode with a goal receptacle,
-    nearest the middle between both, so that the arm can carry the target there."""
+    one). ``arms`` (default: all) are tried nearest the target first; for an episode with a
+    goal receptacle, nearest the middle between both, so that the arm can carry the target
+    there. ``speedup`` scales the rig's joint limits (a pick after a relay hurries)."""
     u = env.unwrapped
     spec, base = u.episode, u.agent.robot.pose.sp.inv()
     point = (base * u.objects[spec.target].pose.sp).p
@@ -156,7 +165,9 @@ def plan_pick(env) -> np.ndarray | str:
         point = (point + (base * u.objects[spec.goal_destination].pose.sp).p) / 2
     reasons = []
     for arm in arm_order(env, point):
-        actions = _plan_arm(env, Rig.from_env(env, arm))
+        if arms is not None and arm not in arms:
+            continue
+        actions = _plan_arm(env, Rig.from_env(env, arm), speedup)
         if not isinstance(actions, str):
             return actions
         reasons.append(actions)

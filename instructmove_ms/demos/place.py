@@ -6,7 +6,7 @@ in the hand. Release poses hold the object over the goal receptacle's interior, 
 where the grasp tilted it (else as held), turned about the vertical to line up with the
 interior (a few yaws), as low as the hand clears the receptacle (deep bins: dropped from above
 the rim). An OMPL path leads above the release pose, a straight descent reaches it, the
-gripper opens and the hand retreats straight up. ``synthesize_place`` runs both from a reset.
+gripper opens and the hand retreats straight up.
 """
 
 from __future__ import annotations
@@ -18,10 +18,8 @@ import numpy as np
 import sapien
 import torch
 
-from instructmove_ms.demos.pick import plan_pick, rollout
 from instructmove_ms.planning import (
     CollisionWorld,
-    JointLimits,
     Rig,
     cartesian_path,
     plan_joint_path,
@@ -43,8 +41,9 @@ OPEN_STEPS = 12  # steps the gripper gets to open
 SETTLE_STEPS = 40  # steps at most for a dropped object to come to rest
 SPEEDUPS = (1.0, 1.5, 2.0)  # of the rig's joint limits, where the horizon asks for it
 
-#: Joint paths of a place: to the pre-place pose, the descent, the retreat.
-Paths = tuple[np.ndarray, np.ndarray, np.ndarray]
+#: Joint paths of a place: to the pre-place pose and the descent (closed gripper), then the
+#: retreat and any further motions (open gripper).
+Paths = tuple[np.ndarray, ...]
 
 
 @dataclass(frozen=True)
@@ -142,7 +141,7 @@ def _fits(interior: Interior, rotation: np.ndarray, corners: np.ndarray) -> bool
     return bool(np.all(margin >= FIT_MARGIN))
 
 
-def _releases(env, rig: Rig, world: CollisionWorld, interior: Interior) -> list[Release]:
+def releases(env, rig: Rig, world: CollisionWorld, interior: Interior) -> list[Release]:
     """The lowest collision-free release of every orientation, best first: the footprint
     fits, then the object stands upright, then the lowest, then the least joint motion."""
     u = env.unwrapped
@@ -169,29 +168,40 @@ def _above(pose: sapien.Pose, dz: float) -> sapien.Pose:
     return sapien.Pose(pose.p + np.array([0.0, 0.0, dz]), pose.q)
 
 
-def _place_paths(rig: Rig, world: CollisionWorld, release: Release, rim: float) -> Paths | None:
-    """(path to the pre-place pose, descent, retreat) joint paths for one release, or None.
-    The retreat holds still where the open hand cannot move straight up."""
+def place_paths(
+    rig: Rig, world: CollisionWorld, release: Release, rim: float, home: np.ndarray | None = None
+) -> Paths | None:
+    """(path to the pre-place pose, descent, retreat[, path home]) joint paths for one
+    release, or None. Where the pre-place pose above the rim is out of reach, the path leads
+    to the release itself and the descent is that one configuration. The retreat holds still
+    where the open hand cannot move straight up; with ``home`` (an arm configuration) the
+    open hand then goes there, or the release fails."""
     kin = rig.kin
     rise = max(PRE_PLACE, rim + ABOVE_RIM - release.height)
     q_pre = kin.ik(
         _above(release.tcp, rise), seeds=[release.q], accept=lambda q: not world.in_collision(q)
     )
-    if q_pre is None:
-        return None
-    to_pre = plan_joint_path(world, rig.start, q_pre, time_limit=1.0, attempts=2)
-    descend = None if to_pre is None else cartesian_path(kin, q_pre, release.tcp, world)
+    if q_pre is None:  # too high to reach: a path straight to the release, over the rim
+        to_pre = plan_joint_path(world, rig.start, release.q)
+        descend = None if to_pre is None else to_pre[-1:]
+    else:
+        to_pre = plan_joint_path(world, rig.start, q_pre)
+        descend = None if to_pre is None else cartesian_path(kin, q_pre, release.tcp, world)
     if descend is None:
         return None
     name = world.detach(descend[-1])
     for link in world.gripper_links:  # the open fingers leave the object
         world.allow(link, name)
     retreat = cartesian_path(kin, descend[-1], _above(kin.fk(descend[-1]), RETREAT), world)
+    retreat = descend[-1:] if retreat is None else retreat
+    back = None if home is None else plan_joint_path(world, retreat[-1], home)
     world.attach(name, descend[-1])  # as it was, for the next release
-    return to_pre, descend, descend[-1:] if retreat is None else retreat
+    if home is None:
+        return to_pre, descend, retreat
+    return None if back is None else (to_pre, descend, retreat, back)
 
 
-def _holding_arm(env) -> int:
+def holding_arm(env) -> int:
     """The arm whose TCP is nearest the target (the one that picked it)."""
     u = env.unwrapped
     tcps = u.agent.tcp_positions()[0]
@@ -199,19 +209,20 @@ def _holding_arm(env) -> int:
     return int(torch.linalg.norm(tcps - target, dim=1).argmin())
 
 
-def _timed(rig: Rig, paths: Paths, steps: int) -> np.ndarray:
-    """The place actions of ``paths`` (to the pre-place pose, descent, retreat), sped up by
-    the least of ``SPEEDUPS`` that fits them into ``steps`` (the fastest where none does)."""
-    to_pre, descend, retreat = paths
+def timed(rig: Rig, paths: Paths, steps: int) -> np.ndarray:
+    """The place actions of ``paths`` (to the pre-place pose, descent, open-gripper motions),
+    sped up by the least of ``SPEEDUPS`` that fits them into ``steps`` (the fastest where
+    none does)."""
+    to_pre, descend, *after = paths
     open_, closed = rig.gripper.open, rig.gripper.closed
     for speedup in SPEEDUPS:
-        limits = JointLimits(rig.limits.velocity * speedup, rig.limits.acceleration * speedup)
+        limits = rig.limits.faster(speedup)
         actions = np.vstack(
             [
                 rig.actions(time_parametrize(to_pre, limits), closed),
                 rig.actions(time_parametrize(descend, limits), closed),
                 rig.actions(np.repeat(descend[-1:], OPEN_STEPS, axis=0), open_),
-                rig.actions(time_parametrize(retreat, limits), open_),
+                *(rig.actions(time_parametrize(p, limits), open_) for p in after),
             ]
         )
         if len(actions) <= steps:
@@ -219,54 +230,43 @@ def _timed(rig: Rig, paths: Paths, steps: int) -> np.ndarray:
     return actions
 
 
-def _steps_left(env) -> int:
+def steps_left(env) -> int:
     """Steps left in the episode's horizon."""
     u = env.unwrapped
     return u.task.max_episode_steps - int(u.elapsed_steps[0])
 
 
-def plan_place(env) -> np.ndarray | str:
-    """``pd_joint_pos`` actions that place the held target in the goal receptacle from the
-    env's current state, or the failure reason: ``"no_ik"`` (no collision-free release
-    configuration) or ``"no_plan"`` (no collision-free path to the ``MAX_RELEASES`` best).
-    The motion is sped up where needed to leave ``SETTLE_STEPS`` of the episode's horizon."""
-    u = env.unwrapped
-    rig = Rig.from_env(env, _holding_arm(env))
+def held_world(env, rig: Rig) -> CollisionWorld:
+    """The collision world of ``rig`` with the target attached to its hand."""
     world = CollisionWorld.from_env(env, rig.kin)
-    target = f"object_{u.episode.target}"
+    target = f"object_{env.unwrapped.episode.target}"
     for link in world.gripper_links:
         world.allow(link, target)
     world.attach(target, rig.start)
-    interior = goal_interior(env)
-    releases = _releases(env, rig, world, interior)
-    if not releases:
+    return world
+
+
+def plan_release(
+    env, rig: Rig, interior: Interior, steps: int, home: np.ndarray | None = None
+) -> np.ndarray | str:
+    """Actions that set the held target down in ``interior`` (see ``place_paths`` for
+    ``home``), fitted into ``steps`` where the speed-ups allow, or the failure reason:
+    ``"no_ik"`` (no collision-free release configuration) or ``"no_plan"`` (no
+    collision-free path to the ``MAX_RELEASES`` best)."""
+    world = held_world(env, rig)
+    found = releases(env, rig, world, interior)
+    if not found:
         return "no_ik"
-    for release in releases[:MAX_RELEASES]:
-        paths = _place_paths(rig, world, release, interior.height)
+    for release in found[:MAX_RELEASES]:
+        paths = place_paths(rig, world, release, interior.height, home)
         if paths is not None:
-            return _timed(rig, paths, _steps_left(env) - SETTLE_STEPS)
+            return timed(rig, paths, steps)
     return "no_plan"
 
 
-def synthesize_place(env) -> tuple[list[dict[str, bool]], str | None]:
-    """Pick the episode's target and place it in the goal receptacle, both planned, from an
-    env just reset (``pd_joint_pos`` control). Returns the ``PLACE_STAGES`` flags of every
-    step executed (within the horizon) and None on success, else the failure reason:
-    ``"no_ik"`` / ``"no_plan"`` (pick or place), ``"grasp_slipped"`` (not held after the
-    lift) or ``"place_missed"`` (executed, but the target does not rest in the receptacle)."""
-    u = env.unwrapped
-    pick = plan_pick(env)
-    if isinstance(pick, str):
-        return [], pick
-    flags = rollout(env, pick, PLACE_STAGES)
-    if not flags[-1]["lift_pick"] or not bool(u.agent.is_grasping(u.objects[u.episode.target])):
-        return flags, "grasp_slipped"
-    place = plan_place(env)
-    if isinstance(place, str):
-        return flags, place
-    flags += rollout(env, place[: _steps_left(env)], PLACE_STAGES)
-    for _ in range(min(SETTLE_STEPS, _steps_left(env))):  # a dropped object comes to rest
-        if flags[-1]["success"]:
-            break
-        flags += rollout(env, place[-1:], PLACE_STAGES)
-    return flags, None if flags[-1]["success"] else "place_missed"
+def plan_place(env) -> np.ndarray | str:
+    """``pd_joint_pos`` actions that place the held target in the goal receptacle from the
+    env's current state, or the failure reason (``plan_release``). The motion is sped up
+    where needed to leave ``SETTLE_STEPS`` of the episode's horizon."""
+    rig = Rig.from_env(env, holding_arm(env))
+    return plan_release(env, rig, goal_interior(env), steps_left(env) - SETTLE_STEPS)

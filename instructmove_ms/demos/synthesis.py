@@ -7,8 +7,11 @@ the per-step stage flags of what it executed plus ``None`` on success or the fai
 from __future__ import annotations
 
 from collections.abc import Callable
+from functools import partial
 
-from .pick import PICK_TASKS, plan_pick, rollout
+from .pick import PICK_TASKS, STAGES, rollout
+from .place import PLACE_STAGES, SETTLE_STEPS, steps_left
+from .script import MotionScript
 
 #: Failure reasons, counted per run: no IK solution for any grasp or place pose, no
 #: collision-free path, the object left the gripper, the object missed the receptacle.
@@ -18,19 +21,28 @@ Flags = list[dict[str, bool]]
 Synthesizer = Callable[..., tuple[Flags, str | None]]
 
 
-def synthesize_pick(env) -> tuple[Flags, str | None]:
-    """Plan a pick of the target, run it; success is the task's own check at the end."""
-    actions = plan_pick(env)
-    if isinstance(actions, str):
-        return [], actions
-    flags = rollout(env, actions)
-    return flags, None if flags and flags[-1]["success"] else "grasp_slipped"
+def synthesize(env, stages: tuple[str, ...] = STAGES) -> tuple[Flags, str | None]:
+    """Play the episode's ``MotionScript`` (one pick attempt) within the horizon; returns the
+    ``stages`` flags of every step and None where the task's own success check passes at
+    the end, else the failure reason: ``"no_ik"`` / ``"no_plan"`` (a pick, relay or place
+    found none), ``"grasp_slipped"`` (not held after a lift) or ``"place_missed"`` (all
+    executed, the target does not rest in the receptacle). A dropped object gets up to
+    ``SETTLE_STEPS`` to come to rest."""
+    script, flags, last = MotionScript(), [], None
+    while steps_left(env) > 0 and (motion := script.next(env)) is not None:
+        if isinstance(motion, str):
+            return flags, motion
+        flags += rollout(env, motion[: steps_left(env)], stages)
+        last = motion[-1:]
+    for _ in range(min(SETTLE_STEPS, steps_left(env))):
+        if last is None or flags[-1]["success"]:
+            break
+        flags += rollout(env, last, stages)
+    if flags and flags[-1]["success"]:
+        return flags, None
+    return flags, "place_missed" if "place" in stages else "grasp_slipped"
 
 
 def synthesizer(task: str) -> Synthesizer:
     """The synthesizer of ``task``'s family."""
-    if task in PICK_TASKS:
-        return synthesize_pick
-    from .place import synthesize_place  # PlaceA2B
-
-    return synthesize_place
+    return synthesize if task in PICK_TASKS else partial(synthesize, stages=PLACE_STAGES)

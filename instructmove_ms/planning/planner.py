@@ -19,6 +19,9 @@ ou.setLogLevel(ou.LOG_WARN)
 # OMPL seeds every sampler from one process-wide seed: fixed, a process that plans the same
 # problems in the same order gets the same paths.
 ou.RNG.setSeed(1)
+#: Collision checks an RRTConnect attempt may spend (about a second here): a budget of work,
+#: not of time, so that a loaded machine plans exactly what an idle one does.
+CHECK_BUDGET = 5000
 
 #: Franka Panda joint limits from the datasheet: velocity (rad/s) and acceleration (rad/s^2).
 FRANKA_VELOCITY = np.array([2.175, 2.175, 2.175, 2.175, 2.61, 2.61, 2.61])
@@ -35,6 +38,10 @@ class JointLimits:
 
     velocity: np.ndarray
     acceleration: np.ndarray
+
+    def faster(self, factor: float) -> JointLimits:
+        """These limits, both ``factor`` times higher."""
+        return JointLimits(self.velocity * factor, self.acceleration * factor)
 
     @classmethod
     def franka(cls, scale: float = 0.3) -> JointLimits:
@@ -61,17 +68,23 @@ def path_is_free(world: CollisionWorld, path: np.ndarray, max_step: float = 0.01
     return not any(world.in_collision(q) for q in densify(path, max_step))
 
 
+def stop_after(counter: list[int], checks: int) -> ob.PlannerTerminationCondition:
+    """An OMPL termination condition: true once ``counter[0]`` reaches ``checks``."""
+    return ob.PlannerTerminationCondition(lambda: counter[0] >= checks)
+
+
 def plan_joint_path(
     world: CollisionWorld,
     start: np.ndarray,
     goal: np.ndarray,
-    time_limit: float = 2.0,
-    attempts: int = 3,
+    checks: int = CHECK_BUDGET,
+    attempts: int = 2,
     max_step: float = 0.02,
 ) -> np.ndarray | None:
     """A collision-free joint path (rows: configurations, at most ``max_step`` rad apart per
     joint) from ``start`` to ``goal``, or None. Tries the straight line first, then RRTConnect
-    with path simplification; every returned state passes ``world.in_collision``."""
+    (``attempts`` times, each ending after ``checks`` collision checks) with path
+    simplification; every returned state passes ``world.in_collision``."""
     start, goal = np.asarray(start, dtype=float), np.asarray(goal, dtype=float)
     if world.in_collision(start) or world.in_collision(goal):
         return None
@@ -86,9 +99,13 @@ def plan_joint_path(
         bounds.setHigh(i, float(kin.upper[i]))
     space.setBounds(bounds)
     setup = og.SimpleSetup(space)
-    setup.setStateValidityChecker(
-        lambda s: not world.in_collision(np.array([s[i] for i in range(n)]))
-    )
+    done = [0]
+
+    def valid(state) -> bool:
+        done[0] += 1
+        return not world.in_collision(np.array([state[i] for i in range(n)]))
+
+    setup.setStateValidityChecker(valid)
     info = setup.getSpaceInformation()
     info.setStateValidityCheckingResolution(0.005)
     setup.setPlanner(og.RRTConnect(info))
@@ -98,9 +115,11 @@ def plan_joint_path(
     setup.setStartAndGoalStates(a, b)
     for _ in range(attempts):
         setup.clear()
-        if not setup.solve(time_limit) or not setup.haveExactSolutionPath():
+        done[0] = 0
+        if not setup.solve(stop_after(done, checks)) or not setup.haveExactSolutionPath():
             continue
-        setup.simplifySolution(1.0)
+        done[0] = 0
+        setup.simplifySolution(stop_after(done, checks))
         path = setup.getSolutionPath()
         rows = np.array(
             [[path.getState(k)[i] for i in range(n)] for k in range(path.getStateCount())]

@@ -1,0 +1,81 @@
+"""A relay between the two arms of a dual-arm rig, for a goal the holding arm cannot reach.
+
+The arm holding the target sets it down upright on a free spot of the table between the arms
+(leaning towards the other arm), opens, rises and returns to its rest configuration, out of
+the other arm's way; the other arm then picks the target up again and carries it on.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import sapien
+
+from instructmove_ms.planning import Rig
+
+from .place import SETTLE_STEPS, Interior, holding_arm, plan_release, steps_left
+
+#: Spots (base frame, metres): along the table (x) and across it (y, towards the other arm
+#: from the middle between the shoulders), tried nearest ``SPOT`` first.
+SPOT_X = (0.20, 0.25, 0.30, 0.35, 0.40, 0.45, 0.50)
+SPOT_Y = (-0.15, -0.10, -0.05, 0.0, 0.05, 0.10, 0.15, 0.20, 0.25)
+SPOT = (0.33, 0.05)
+GAP = 0.03  # metres between the target's footprint (a circle round its box) and other boxes
+#: Steps the relay leaves of the horizon for the other arm's pick and place.
+RESERVE = 200
+
+
+def spots(env, holder: int) -> list[np.ndarray]:
+    """Free spots (x, y on the table, base frame) for the target, best first: the circle
+    round the target's box keeps ``GAP`` from every other object's box."""
+    u = env.unwrapped
+    spec = u.episode
+    base = u.agent.robot.pose.sp.inv()
+    lo, hi = (np.asarray(b) for b in u.catalog[spec.objects[spec.target].uuid].bounds)
+    clearance = 0.5 * float(np.linalg.norm((hi - lo)[:2])) + GAP
+    boxes = [
+        (base * obj.pose.sp, *(np.asarray(b) for b in u.catalog[spec.objects[k].uuid].bounds))
+        for k, obj in enumerate(u.objects)
+        if k != spec.target
+    ]
+
+    def free(spot: np.ndarray) -> bool:
+        for pose, lo, hi in boxes:
+            local = (pose.inv() * sapien.Pose([spot[0], spot[1], 0.0])).p[:2]
+            if (
+                np.linalg.norm(np.maximum(np.maximum(lo[:2] - local, local - hi[:2]), 0.0))
+                < clearance
+            ):
+                return False
+        return True
+
+    toward = -1.0 if holder == 0 else 1.0  # arm 0 is the left one (+y)
+    grid = [np.array([x, toward * y]) for x in SPOT_X for y in SPOT_Y]
+    preferred = np.array([SPOT[0], toward * SPOT[1]])
+    return sorted(filter(free, grid), key=lambda s: float(np.linalg.norm(s - preferred)))
+
+
+def plan_relay(env) -> np.ndarray | str:
+    """``pd_joint_pos`` actions that set the held target down on the first of ``spots`` that
+    works and bring the holding arm back to rest, fitted into the horizon less ``RESERVE``
+    steps, or the failure reason of the last spot tried (``"no_ik"`` where none is free)."""
+    u = env.unwrapped
+    holder = holding_arm(env)
+    rig = Rig.from_env(env, holder)
+    home = np.asarray(u.agent.keyframes["rest"].qpos, dtype=float)[rig.kin.arm]
+    reason = "no_ik"
+    for x, y in spots(env, holder):
+        frame = np.eye(4)
+        frame[:2, 3] = x, y  # the table's top is the base frame's z = 0
+        table = Interior(frame, np.array([1.0, 1.0]), 0.0)
+        steps = max(steps_left(env) - RESERVE, SETTLE_STEPS)
+        actions = plan_release(env, rig, table, steps, home=home)
+        if not isinstance(actions, str):
+            return actions
+        reason = actions
+    return reason
+
+
+def other_arm(env) -> list[int]:
+    """The arms not holding the target (none for a single arm)."""
+    arms = range(len(env.unwrapped.agent.tcp_links))
+    return [k for k in arms if k != holding_arm(env)]
