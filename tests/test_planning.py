@@ -2,6 +2,10 @@
 
 from __future__ import annotations
 
+import subprocess
+import sys
+from pathlib import Path
+
 import fcl
 import numpy as np
 import pytest
@@ -229,3 +233,41 @@ def test_piperx_rig_actions_hold_the_other_arm(piperx):
     narrow = right.opened(0.04)
     assert np.allclose(narrow.kin.qpos[[14, 15]], [0.02, -0.02])
     assert np.allclose(right.kin.qpos[[14, 15]], [0.05, -0.05])  # the rig itself is unchanged
+
+
+_WALL_PLAN = """
+import sys, time
+import fcl, numpy as np, sapien
+from conftest import make_env
+from instructmove_ms.planning import ArmKinematics, CollisionWorld, plan_joint_path
+env = make_env()
+env.reset(seed=0)
+kin = ArmKinematics.from_env(env)
+world = CollisionWorld.from_env(env, kin)
+rest = kin.qpos[kin.arm]
+start = kin.ik(sapien.Pose([0.45, 0.3, 0.25], [0, 1, 0, 0]), seeds=[rest])
+goal = kin.ik(sapien.Pose([0.45, -0.3, 0.25], [0, 1, 0, 0]), seeds=[rest])
+world.add_obstacle("wall", [(fcl.Box(0.3, 0.04, 0.5), sapien.Pose())], sapien.Pose([0.45, 0, 0.25]))
+if sys.argv[1] == "slow":  # a loaded machine: every collision check takes longer
+    check = world.in_collision
+    world.in_collision = lambda q: time.sleep(0.0005) or check(q)
+path = plan_joint_path(world, start, goal)
+np.save(sys.argv[2], path)
+"""
+
+
+def test_planning_does_not_depend_on_the_machine_speed(tmp_path):
+    """OMPL stops on a budget of collision checks, not a clock: slowed checks plan the
+    same path in a fresh process."""
+    paths = []
+    for speed in ("fast", "slow"):
+        out = tmp_path / f"{speed}.npy"
+        subprocess.run(
+            [sys.executable, "-c", _WALL_PLAN, speed, str(out)],
+            cwd=Path(__file__).parent,
+            check=True,
+            timeout=300,
+        )
+        paths.append(np.load(out))
+    assert len(paths[0]) > 2, "the wall forces a planned path"
+    assert np.array_equal(paths[0], paths[1])
