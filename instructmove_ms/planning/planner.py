@@ -16,9 +16,10 @@ from .collision import CollisionWorld
 from .kinematics import ArmKinematics
 
 ou.setLogLevel(ou.LOG_WARN)
-# OMPL seeds every sampler from one process-wide seed: fixed, a process that plans the same
-# problems in the same order gets the same paths.
-ou.RNG.setSeed(1)
+#: OMPL seeds every sampler from one process-wide seed generator; ``plan_joint_path`` resets
+#: it to this seed first, so that a plan depends only on its problem, not on the plans
+#: before it.
+OMPL_SEED = 1
 #: Collision checks an RRTConnect attempt may spend (about a second here): a budget of work,
 #: not of time, so that a loaded machine plans exactly what an idle one does.
 CHECK_BUDGET = 5000
@@ -68,6 +69,14 @@ def path_is_free(world: CollisionWorld, path: np.ndarray, max_step: float = 0.01
     return not any(world.in_collision(q) for q in densify(path, max_step))
 
 
+def _reseed() -> None:
+    """Reset OMPL's seed generator to ``OMPL_SEED`` (quietly: OMPL warns that sampling has
+    already started, which is the point)."""
+    ou.setLogLevel(ou.LOG_NONE)
+    ou.RNG.setSeed(OMPL_SEED)
+    ou.setLogLevel(ou.LOG_WARN)
+
+
 def stop_after(counter: list[int], checks: int) -> ob.PlannerTerminationCondition:
     """An OMPL termination condition: true once ``counter[0]`` reaches ``checks``."""
     return ob.PlannerTerminationCondition(lambda: counter[0] >= checks)
@@ -84,13 +93,15 @@ def plan_joint_path(
     """A collision-free joint path (rows: configurations, at most ``max_step`` rad apart per
     joint) from ``start`` to ``goal``, or None. Tries the straight line first, then RRTConnect
     (``attempts`` times, each ending after ``checks`` collision checks) with path
-    simplification; every returned state passes ``world.in_collision``."""
+    simplification; every returned state passes ``world.in_collision``. The same problem
+    gives the same path, whatever was planned before."""
     start, goal = np.asarray(start, dtype=float), np.asarray(goal, dtype=float)
     if world.in_collision(start) or world.in_collision(goal):
         return None
     line = densify(np.stack([start, goal]), max_step)
     if path_is_free(world, line, max_step):
         return line
+    _reseed()
     kin, n = world.kin, len(start)
     space = ob.RealVectorStateSpace(n)
     bounds = ob.RealVectorBounds(n)
