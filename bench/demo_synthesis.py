@@ -1,10 +1,11 @@
 """Demo synthesis on the CPU: valid-synthesis rate and demos per minute per core.
 
 For every family and robot, plans and runs ``--seeds`` training seeds in one process (one
-core) and prints the valid-synthesis rate with the failures by reason, demos per minute,
+core) as the generator does (up to ``GRASP_TRIALS`` rollouts per scene) and prints the
+valid-synthesis rate with the failures by reason, the rollouts per scene, demos per minute,
 and the ratio of the whole synthesis time to the baseline measured in this run: replaying
-the same action sequences open loop in the same env (the simulation cost alone), so the
-ratio is the planning overhead. With ``--workers K`` it also times the generator with K
+each scene's last action sequence open loop in the same env (the simulation cost alone), so
+the ratio is the planning overhead. With ``--workers K`` it also times the generator with K
 spawned workers against one, on PickCategory with the Franka.
 """
 
@@ -19,7 +20,7 @@ import gymnasium as gym
 
 import instructmove_ms  # noqa: F401
 from instructmove_ms.demos.generate import generate
-from instructmove_ms.demos.synthesis import FAILURES, synthesizer
+from instructmove_ms.demos.synthesis import FAILURES, synthesize_scene, synthesizer
 from instructmove_ms.tasks import TASKS
 
 
@@ -49,9 +50,9 @@ def synthesis(task: str, robot: str, seeds: int) -> tuple[Counter, float, float]
     synthesize, outcomes, recorded = synthesizer(task), Counter(), []
     start = time.perf_counter()
     for seed in range(seeds):
-        env.reset(seed=seed)
-        _, failure = synthesize(env)
-        outcomes[failure or "kept"] += 1
+        scene = synthesize_scene(env, seed, synthesize)
+        outcomes[scene.failure or "kept"] += 1
+        outcomes["rollouts"] += scene.rollouts
         recorded.append((seed, env.actions))
     planned = time.perf_counter() - start
     start = time.perf_counter()
@@ -78,7 +79,8 @@ def main() -> None:
             failures = ", ".join(f"{k}={outcomes[k]}" for k in FAILURES)
             print(
                 f"{task:28s} {robot:7s} valid-synthesis rate {kept / args.seeds:6.1%} "
-                f"({failures}); {kept * 60 / planned:5.1f} demos/min/core; "
+                f"({failures}; {outcomes['rollouts'] / args.seeds:.2f} rollouts per scene); "
+                f"{kept * 60 / planned:5.1f} demos/min/core; "
                 f"time vs open-loop replay of the same steps {planned / replayed:4.2f}x"
             )
     if args.workers > 1:

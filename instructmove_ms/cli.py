@@ -212,7 +212,10 @@ def _cmd_demos_generate(args: argparse.Namespace) -> int:
     report = generate(
         args.task, args.robot, args.n, args.out, args.seed0, args.workers, args.shard_size
     )
-    print(f"{report.kept} demos from {report.tried} seeds: valid-synthesis rate {report.rate:.1%}")
+    print(
+        f"{report.kept} demos from {report.tried} seeds ({report.rollouts} rollouts): "
+        f"valid-synthesis rate {report.rate:.1%}"
+    )
     print("failures: " + ", ".join(f"{k}={v}" for k, v in report.failures.items()))
     print(f"-> {report.path}")
     return 0

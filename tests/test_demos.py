@@ -49,8 +49,8 @@ def test_generate_records_successful_demos(demos):
         )
 
 
-def test_replay_reproduces_success(demos):
-    out, _ = demos
+def _replay(out) -> str:
+    """ManiSkill's plain replay of the merged demos to state observations; its output."""
     result = subprocess.run(
         [sys.executable, "-m", "mani_skill.trajectory.replay_trajectory"]
         + ["--traj-path", f"{STEM}.h5", "-o", "state", "--save-traj", "-b", "physx_cpu"],
@@ -60,7 +60,24 @@ def test_replay_reproduces_success(demos):
         timeout=300,
     )
     assert result.returncode == 0, result.stderr[-2000:]
-    assert "Replayed 2 episodes, 2/2=100.00% demos saved" in result.stdout + result.stderr
+    return result.stdout + result.stderr
+
+
+def test_replay_reproduces_success(demos):
+    out, _ = demos
+    assert "Replayed 2 episodes, 2/2=100.00% demos saved" in _replay(out)
+
+
+def test_a_slipped_grasp_is_tried_again_with_the_next_plan(tmp_path):
+    """Seed 33: the cheapest grasp holds a watering can by its handle far from its middle and
+    the can slips out on the lift; the scene is reset and the next grasp plan lifts it. Only
+    that rollout is recorded, so ManiSkill's replay from the seed reproduces it."""
+    report = generate(TASK, ROBOT, 1, tmp_path, seed0=33, shard_size=1)
+    assert (report.kept, report.tried, report.rollouts) == (1, 1, 2)
+    (entry,) = json.loads((tmp_path / f"{STEM}.episodes.json").read_text())
+    assert entry["seed"] == 33 and entry["variant"] == 1
+    assert entry["spec"]["objects"][entry["spec"]["target"]]["category"] == "watering_can"
+    assert "Replayed 1 episodes, 1/1=100.00% demos saved" in _replay(tmp_path)
 
 
 def test_interrupted_run_resumes_to_exactly_n(demos, tmp_path, monkeypatch, capsys):
@@ -70,11 +87,11 @@ def test_interrupted_run_resumes_to_exactly_n(demos, tmp_path, monkeypatch, caps
     real = generator.synthesizer(TASK)
     calls = []
 
-    def interrupt_second(env):
+    def interrupt_second(env, variant):
         calls.append(1)
         if len(calls) == 2:
             raise KeyboardInterrupt  # Ctrl-C while the fourth demo is being planned
-        return real(env)
+        return real(env, variant)
 
     monkeypatch.setattr(generator, "synthesizer", lambda task: interrupt_second)
     with pytest.raises(KeyboardInterrupt):

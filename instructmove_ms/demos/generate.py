@@ -33,7 +33,7 @@ from tqdm import tqdm
 from instructmove_ms.tasks import TASKS
 from instructmove_ms.validation import check_choice
 
-from .synthesis import FAILURES, synthesizer
+from .synthesis import FAILURES, synthesize_scene, synthesizer
 
 TRAIN_SEEDS = 10**9  # training seeds lie below this (evaluation sets use others)
 SHARD_SIZE = 5  # kept demos per shard
@@ -45,10 +45,12 @@ Progress = Callable[[str | None], None]  # called per seed tried: None (kept) or
 
 @dataclass
 class Report:
-    """Outcome of a (possibly resumed) run: demos kept, seeds tried, failures by reason."""
+    """Outcome of a (possibly resumed) run: demos kept, seeds (scenes) tried, rollouts run
+    (``synthesize_scene``), failures by reason (of the scenes left out)."""
 
     kept: int
     tried: int
+    rollouts: int = 0
     failures: dict[str, int] = field(default_factory=dict)
     path: Path | None = None
 
@@ -78,9 +80,10 @@ def _write_json(path: Path, data) -> None:
     os.replace(tmp, path)
 
 
-def _record(job: Job, folder: Path, progress: Progress) -> tuple[list[dict], Counter[str]]:
+def _record(job: Job, folder: Path, progress: Progress) -> tuple[list[dict], Counter[str], int]:
     """Try the job's seeds until it has kept ``job.want`` demos, recording them into
-    ``folder/<job.name>.h5``; returns the sidecar entries and the failure counts."""
+    ``folder/<job.name>.h5``; returns the sidecar entries, the failure counts and the number
+    of rollouts run (``synthesize_scene``: only a scene's successful rollout is kept)."""
     env = gym.make(
         job.task,
         robot_uids=job.robot,
@@ -100,20 +103,26 @@ def _record(job: Job, folder: Path, progress: Progress) -> tuple[list[dict], Cou
     synthesize = synthesizer(job.task)
     episodes: list[dict] = []
     failures: Counter[str] = Counter()
+    rollouts = 0
     try:
         for seed in range(job.seed, job.seed + SEED_BLOCK):
             if len(episodes) == job.want:
                 break
-            env.reset(seed=seed)
-            flags, failure = synthesize(env)
+            scene = synthesize_scene(
+                env, seed, synthesize, lambda: env.flush_trajectory(save=False)
+            )
+            rollouts += scene.rollouts
+            failure = scene.failure
             if failure is None:
                 env.flush_trajectory()
-                stages = {k: [f[k] for f in flags] for k in flags[0]}
+                stages = {k: [f[k] for f in scene.flags] for k in scene.flags[0]}
                 spec = env.unwrapped.episode.to_dict()
-                episodes.append({"seed": seed, "spec": spec, "stages": stages})
+                episodes.append(
+                    {"seed": seed, "variant": scene.variant, "spec": spec, "stages": stages}
+                )
             else:
                 failures[failure] += 1
-                if flags:
+                if scene.flags:
                     env.flush_trajectory(save=False)
             progress(failure)
         else:
@@ -123,14 +132,14 @@ def _record(job: Job, folder: Path, progress: Progress) -> tuple[list[dict], Cou
             )
     finally:
         env.close()
-    return episodes, failures
+    return episodes, failures, rollouts
 
 
 def run_job(job: Job, progress: Progress) -> dict:
     """Record one shard atomically into ``job.out/shards``; returns its ledger entry."""
     shards = job.out / "shards"
     with tempfile.TemporaryDirectory(dir=job.out) as tmp:
-        episodes, failures = _record(job, Path(tmp), progress)
+        episodes, failures, rollouts = _record(job, Path(tmp), progress)
         _write_json(Path(tmp) / f"{job.name}.episodes.json", episodes)
         for suffix in (".h5", ".json", ".episodes.json"):
             os.replace(Path(tmp) / f"{job.name}{suffix}", shards / f"{job.name}{suffix}")
@@ -140,6 +149,7 @@ def run_job(job: Job, progress: Progress) -> dict:
         "name": job.name,
         "kept": len(episodes),
         "tried": tried,
+        "rollouts": rollouts,
         "failures": dict(failures),
     }
 
@@ -222,6 +232,7 @@ def generate(
     return Report(
         sum(s["kept"] for s in ledger["shards"]),
         sum(s["tried"] for s in ledger["shards"]),
+        sum(s.get("rollouts", s["tried"]) for s in ledger["shards"]),
         {k: failures.get(k, 0) for k in FAILURES},
         path,
     )

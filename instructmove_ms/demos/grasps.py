@@ -4,7 +4,7 @@ reach them upright, ranked by IK feasibility and joint-space cost."""
 
 from __future__ import annotations
 
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 
 import numpy as np
@@ -129,15 +129,38 @@ def leaned(frame: sapien.Pose, shoulder: np.ndarray, angle: float) -> list[sapie
     return [lean_away(frame, a, shoulder, angle) for a in (closing, across(frame, shoulder))]
 
 
+def touches_only(world: CollisionWorld, q: np.ndarray, allowed: set[str]) -> bool:
+    """Every contact of configuration ``q`` involves one of ``allowed`` (body names)."""
+    return all(allowed.intersection(pair) for pair in world.contacts(q))
+
+
+def descends(
+    rig: Rig, world: CollisionWorld, tcp: sapien.Pose, allowed: set[str]
+) -> Callable[[np.ndarray], bool]:
+    """IK acceptance for a pre-grasp: collision-free, and the hand reaches ``tcp`` from it
+    (IK seeded there) touching nothing outside ``allowed``."""
+
+    def accept(q: np.ndarray) -> bool:
+        if world.in_collision(q):
+            return False
+        down = rig.kin.ik(tcp, seeds=[q], num_random=0)
+        return down is not None and touches_only(world, down, allowed)
+
+    return accept
+
+
 def candidates(env, rig: Rig, world: CollisionWorld) -> Iterator[Candidate]:
     """Grasp frames (``grasp_frames``) leaned by each of ``LEANS`` in turn (``leaned``)
     whose pre-grasp (the farthest of ``PRE_GRASP`` with one whose fingertips clear the
-    target by ``PRE_CLEARANCE``) has a collision-free IK solution; within a lean, the
-    cheapest first. Each lean is solved only when asked for."""
+    target by ``PRE_CLEARANCE``) has a collision-free IK solution from which the hand
+    reaches the grasp touching nothing but the table and the target (a 7-joint arm's elbow
+    kept off a tall neighbour); within a lean, the cheapest first. Each lean is solved only
+    when asked for."""
     frames = grasp_frames(env, rig.gripper.max_width)
     pose, _, hi = target_box(env)
     clear = (pose * sapien.Pose(hi)).p[2] + PRE_CLEARANCE
     start = rig.start
+    below = {"table", f"object_{env.unwrapped.episode.target}"}
     for lean in LEANS:
         found = []
         for frame in frames:
@@ -147,9 +170,7 @@ def candidates(env, rig: Rig, world: CollisionWorld) -> Iterator[Candidate]:
                     pre = back_off(tcp, distance)
                     if back_off(pre, -rig.tip_depth).p[2] < clear:
                         break
-                    q_pre = rig.kin.ik(
-                        pre, seeds=[start], accept=lambda q: not world.in_collision(q)
-                    )
+                    q_pre = rig.kin.ik(pre, seeds=[start], accept=descends(rig, world, tcp, below))
                     if q_pre is not None:
                         cost = float(np.abs(q_pre - start).sum()) + frame.cost
                         found.append(Candidate(tcp, frame.width, q_pre, cost))

@@ -9,7 +9,7 @@ arm of a rig holds still.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
 from itertools import islice
 
 import numpy as np
@@ -25,7 +25,15 @@ from instructmove_ms.planning import (
     time_parametrize,
 )
 
-from .grasps import Candidate, across, back_off, candidates, lean_away, target_box
+from .grasps import (
+    Candidate,
+    across,
+    back_off,
+    candidates,
+    lean_away,
+    target_box,
+    touches_only,
+)
 
 PICK_TASKS = ("PickCategory-InstructMove", "PickAttribute-InstructMove", "PickSpatial-InstructMove")
 LIFT = 0.15  # metres the object is lifted where the arm reaches that high
@@ -72,10 +80,9 @@ def _grasp_height(env, rig: Rig, world: CollisionWorld, cand: Candidate) -> sapi
         q = rig.kin.ik(grasp, seeds=[cand.q_pre], num_random=0)
         if q is None:
             return None
-        contacts = world.contacts(q)
-        if not contacts:
+        if not world.contacts(q):
             return grasp
-        if not all(below.intersection(pair) for pair in contacts):
+        if not touches_only(world, q, below):
             return None
         grasp = _above(grasp, RAISE_STEP)
 
@@ -114,18 +121,18 @@ def _lift(rig: Rig, world: CollisionWorld, q: np.ndarray, grasp: sapien.Pose) ->
     return best
 
 
-def _plan_arm(env, rig: Rig, speedup: float) -> np.ndarray | str:
-    """The pick actions with ``rig``'s arm, or ``"no_ik"`` / ``"no_plan"``. The fingers open
+def _arm_plans(
+    env, rig: Rig, free: CollisionWorld, ranked: list[Candidate], speedup: float
+) -> Iterator[np.ndarray]:
+    """The pick actions with ``rig``'s arm for each of the ``ranked`` candidates that has a
+    collision-free plan in ``free`` (the arm's world), in order. The fingers open
     ``FINGER_CLEARANCE`` wider than the grasped width on each side; fully only where no
     candidate works so (a finger inside a container). Motions run ``speedup`` times the
     rig's joint limits."""
-    free = CollisionWorld.from_env(env, rig.kin)
-    ranked = list(islice(candidates(env, rig, free), MAX_CANDIDATES))
-    if not ranked:
-        return "no_ik"
     start, closed = rig.start, rig.gripper.closed
     limits = rig.limits.faster(speedup)
     for wide in (False, True):
+        planned = False
         for cand in ranked:
             width = rig.gripper.max_width if wide else cand.width + 2.0 * FINGER_CLEARANCE
             paths = _grasp_and_lift(env, rig.opened(width), cand)
@@ -134,9 +141,10 @@ def _plan_arm(env, rig: Rig, speedup: float) -> np.ndarray | str:
             to_pre = plan_joint_path(free, start, cand.q_pre)
             if to_pre is None:
                 continue
+            planned = True
             descend, lift = paths
             open_ = rig.gripper.value(width)
-            return np.vstack(
+            yield np.vstack(
                 [
                     rig.actions(np.repeat(start[None], SETTLE, axis=0), open_),
                     rig.actions(time_parametrize(to_pre, limits), open_),
@@ -148,30 +156,40 @@ def _plan_arm(env, rig: Rig, speedup: float) -> np.ndarray | str:
                     rig.actions(np.repeat(lift[-1:], HOLD, axis=0), closed),
                 ]
             )
-    return "no_plan"
+        if planned:
+            return
 
 
-def plan_pick(env, arms: Sequence[int] | None = None, speedup: float = 1.0) -> np.ndarray | str:
+def plan_pick(
+    env, arms: Sequence[int] | None = None, speedup: float = 1.0, skip: int = 0
+) -> np.ndarray | str:
     """``pd_joint_pos`` actions that pick up the episode's target from the env's current
     state, or the failure reason: ``"no_ik"`` (no collision-free pre-grasp configuration for
-    any grasp with any arm) or ``"no_plan"`` (no collision-free path for any grasp with
-    one). ``arms`` (default: all) are tried nearest the target first; for an episode with a
-    goal receptacle, nearest the middle between both, so that the arm can carry the target
-    there. ``speedup`` scales the rig's joint limits (a pick after a relay hurries)."""
+    any grasp with any arm) or ``"no_plan"`` (no collision-free path for any grasp with one,
+    or fewer than ``skip + 1`` plans). ``arms`` (default: all) are tried nearest the target
+    first; for an episode with a goal receptacle, nearest the middle between both, so that
+    the arm can carry the target there. Each arm's grasp candidates go cheapest first; the
+    first ``skip`` plans are passed over (another grasp after one that slipped). ``speedup``
+    scales the rig's joint limits (a pick after a relay hurries)."""
     u = env.unwrapped
     spec, base = u.episode, u.agent.robot.pose.sp.inv()
     point = (base * u.objects[spec.target].pose.sp).p
     if spec.goal_destination >= 0:
         point = (point + (base * u.objects[spec.goal_destination].pose.sp).p) / 2
-    reasons = []
+    reason = "no_ik"
     for arm in arm_order(env, point):
         if arms is not None and arm not in arms:
             continue
-        actions = _plan_arm(env, Rig.from_env(env, arm), speedup)
-        if not isinstance(actions, str):
-            return actions
-        reasons.append(actions)
-    return "no_plan" if "no_plan" in reasons else "no_ik"
+        rig = Rig.from_env(env, arm)
+        free = CollisionWorld.from_env(env, rig.kin)
+        ranked = list(islice(candidates(env, rig, free), MAX_CANDIDATES))
+        if ranked:
+            reason = "no_plan"
+        for actions in _arm_plans(env, rig, free, ranked, speedup):
+            if skip == 0:
+                return actions
+            skip -= 1
+    return reason
 
 
 def rollout(env, actions: np.ndarray, stages: tuple[str, ...] = STAGES) -> list[dict[str, bool]]:

@@ -19,9 +19,12 @@ from .relay import other_arm, plan_relay
 class MotionScript:
     """``next(env)`` gives the next motion: ``pd_joint_pos`` actions, a failure reason or
     None once nothing is left. A pick that ends without the target in the hand is planned
-    again, ``pick_attempts`` in all (per arm after a relay)."""
+    again, ``pick_attempts`` in all (per arm after a relay), each attempt with the next
+    grasp plan. ``variant`` passes over that many plans in the first pick (the demo
+    generator's physics trials of the same scene)."""
 
     pick_attempts: int = 1
+    variant: int = 0
     picks: int = 0
     arms: list[int] | None = None
     relayed: bool = False
@@ -38,8 +41,9 @@ class MotionScript:
         if not bool(u.agent.is_grasping(u.objects[spec.target])[0]):
             if self.picks >= self.pick_attempts:
                 return "grasp_slipped"
+            skip = self.picks + (0 if self.relayed else self.variant)
             self.picks += 1
-            return plan_pick(env, self.arms, SPEEDUPS[1] if self.relayed else SPEEDUPS[0])
+            return plan_pick(env, self.arms, SPEEDUPS[int(self.relayed)], skip)
         if spec.goal_destination < 0:
             return None  # picked and held
         self.done = True  # after the place, nothing is left
