@@ -7,9 +7,11 @@ not depend on how many workers run or in which order shards finish. A shard (tra
 ``.h5`` + ``.json`` and a sidecar ``.episodes.json`` with every kept episode's EpisodeSpec and
 per-step stage flags) is written into a temporary folder and moved into place; then the
 ledger ``<task>_<robot>.ledger.json`` (written atomically) records it with its seed and
-failure counts. A shard missing from the ledger is unfinished and is redone, so an
-interruption loses at most the shards in flight and never duplicates a demo. The finished
-shards are merged into ``out_dir/<task>_<robot>.h5`` + ``.json`` + ``.episodes.json``.
+failure counts. Each seed is one scene, played as ``synthesis.synthesize_scene`` does (a
+slipped grasp is tried again with the next plan; only the kept rollout is recorded). A
+shard missing from the ledger is unfinished and is redone, so an interruption loses at most
+the shards in flight and never duplicates a demo. The finished shards are merged into
+``out_dir/<task>_<robot>.h5`` + ``.json`` + ``.episodes.json``.
 """
 
 from __future__ import annotations
