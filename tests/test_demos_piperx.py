@@ -84,12 +84,12 @@ def test_piperx_picks_with_the_nearer_arm(envs):
 def test_piperx_falls_back_to_the_other_arm(envs, monkeypatch):
     env = envs("piperx")
     env.reset(seed=3)  # the right arm is nearer
-    plan_arm = pick._plan_arm
-    monkeypatch.setattr(
-        pick,
-        "_plan_arm",
-        lambda e, rig, speedup: "no_plan" if rig.arm == 1 else plan_arm(e, rig, speedup),
-    )
+    arm_plans = pick._arm_plans
+
+    def left_only(e, rig, *args):
+        return iter(()) if rig.arm == 1 else arm_plans(e, rig, *args)
+
+    monkeypatch.setattr(pick, "_arm_plans", left_only)
     actions = pick.plan_pick(env)
     assert not isinstance(actions, str), actions
     assert _moved_arm(env, actions) == 0
@@ -100,11 +100,21 @@ def test_piperx_falls_back_to_the_other_arm(envs, monkeypatch):
 def test_failure_reason_covers_both_arms(envs, monkeypatch):
     env = envs("piperx")
     env.reset(seed=3)
-    reasons = iter(("no_ik", "no_plan"))
-    monkeypatch.setattr(pick, "_plan_arm", lambda e, rig, speedup: next(reasons))
-    assert pick.plan_pick(env) == "no_plan"
-    monkeypatch.setattr(pick, "_plan_arm", lambda e, rig, speedup: "no_ik")
+    monkeypatch.setattr(pick, "_arm_plans", lambda *args: iter(()))
+    assert pick.plan_pick(env) == "no_plan"  # grasp candidates, but no path to any
+    monkeypatch.setattr(pick, "candidates", lambda *args: iter(()))
     assert pick.plan_pick(env) == "no_ik"
+
+
+def test_skip_passes_over_grasp_plans(envs):
+    """The next grasp plan after one that slipped: another motion, and none left past the
+    last plan of both arms."""
+    env = envs("franka")
+    env.reset(seed=0)
+    first, second = pick.plan_pick(env), pick.plan_pick(env, skip=1)
+    assert not isinstance(second, str), second
+    assert first.shape != second.shape or not np.allclose(first, second)
+    assert pick.plan_pick(env, skip=10**6) == "no_plan"
 
 
 def test_contact_check_sees_the_hand_pressed_on_the_table(envs):
