@@ -129,9 +129,9 @@ def leaned(frame: sapien.Pose, shoulder: np.ndarray, angle: float) -> list[sapie
     return [lean_away(frame, a, shoulder, angle) for a in (closing, across(frame, shoulder))]
 
 
-def touches_only(world: CollisionWorld, q: np.ndarray, allowed: set[str]) -> bool:
-    """Every contact of configuration ``q`` involves one of ``allowed`` (body names)."""
-    return all(allowed.intersection(pair) for pair in world.contacts(q))
+def touches_only(contacts: set[tuple[str, str]], allowed: set[str]) -> bool:
+    """Every pair of ``contacts`` (a collision world's) involves one of ``allowed``."""
+    return all(allowed.intersection(pair) for pair in contacts)
 
 
 def descends(
@@ -144,7 +144,7 @@ def descends(
         if world.in_collision(q):
             return False
         down = rig.kin.ik(tcp, seeds=[q], num_random=0)
-        return down is not None and touches_only(world, down, allowed)
+        return down is not None and touches_only(world.contacts(down), allowed)
 
     return accept
 

@@ -80,9 +80,10 @@ def _grasp_height(env, rig: Rig, world: CollisionWorld, cand: Candidate) -> sapi
         q = rig.kin.ik(grasp, seeds=[cand.q_pre], num_random=0)
         if q is None:
             return None
-        if not world.contacts(q):
+        contacts = world.contacts(q)
+        if not contacts:
             return grasp
-        if not touches_only(world, q, below):
+        if not touches_only(contacts, below):
             return None
         grasp = _above(grasp, RAISE_STEP)
 
