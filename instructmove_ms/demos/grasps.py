@@ -27,6 +27,7 @@ OFF_CENTRE_COST = 20.0
 #: fingers closing askew on a bar align it, and a turned hand can lean with level fingers.
 YAWS = np.deg2rad([30.0, -30.0])
 YAW_COST = 2.0  # cost (rad of joint motion) per radian of turn
+FINGER_CLEARANCE = 0.015  # metres between each open finger and the object at the grasp
 
 
 @dataclass(frozen=True)
@@ -149,14 +150,23 @@ def descends(
     return accept
 
 
-def candidates(env, rig: Rig, world: CollisionWorld) -> Iterator[Candidate]:
+def opening(width: float) -> float:
+    """How far apart the fingers open to grasp an object ``width`` metres across."""
+    return width + 2.0 * FINGER_CLEARANCE
+
+
+def candidates(env, rig: Rig) -> Iterator[Candidate]:
     """Grasp frames (``grasp_frames``) leaned by each of ``LEANS`` in turn (``leaned``)
     whose pre-grasp (the farthest of ``PRE_GRASP`` with one whose fingertips clear the
-    target by ``PRE_CLEARANCE``) has a collision-free IK solution from which the hand
-    reaches the grasp touching nothing but the table and the target (a 7-joint arm's elbow
-    kept off a tall neighbour); within a lean, the cheapest first. Each lean is solved only
+    target by ``PRE_CLEARANCE``) has a collision-free IK solution from which the hand,
+    its fingers at the grasp's ``opening``, reaches the grasp touching nothing but the
+    table and the target (a 7-joint arm's elbow kept off a tall neighbour, a finger off a
+    neighbour lying close); within a lean, the cheapest first. Each lean is solved only
     when asked for."""
     frames = grasp_frames(env, rig.gripper.max_width)
+    worlds: dict[float, CollisionWorld] = {}
+    for width in {frame.width for frame in frames}:
+        worlds[width] = CollisionWorld.from_env(env, rig.opened(opening(width)).kin)
     pose, _, hi = target_box(env)
     clear = (pose * sapien.Pose(hi)).p[2] + PRE_CLEARANCE
     start = rig.start
@@ -170,7 +180,8 @@ def candidates(env, rig: Rig, world: CollisionWorld) -> Iterator[Candidate]:
                     pre = back_off(tcp, distance)
                     if back_off(pre, -rig.tip_depth).p[2] < clear:
                         break
-                    q_pre = rig.kin.ik(pre, seeds=[start], accept=descends(rig, world, tcp, below))
+                    accept = descends(rig, worlds[frame.width], tcp, below)
+                    q_pre = rig.kin.ik(pre, seeds=[start], accept=accept)
                     if q_pre is not None:
                         cost = float(np.abs(q_pre - start).sum()) + frame.cost
                         found.append(Candidate(tcp, frame.width, q_pre, cost))

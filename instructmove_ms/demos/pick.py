@@ -31,6 +31,7 @@ from .grasps import (
     back_off,
     candidates,
     lean_away,
+    opening,
     target_box,
     touches_only,
 )
@@ -41,7 +42,6 @@ MIN_LIFT = 0.06  # and at least this much
 #: Leans (rad) added away from the shoulder along the lift, tried in turn: leaning helps a
 #: stretched arm rise.
 LIFT_LEANS = np.deg2rad([0.0, 15.0, 30.0])
-FINGER_CLEARANCE = 0.015  # metres between each open finger and the object at the grasp
 #: Steps: before the plan, at the pre-grasp and at the grasp (the arm catches up with its
 #: lagging PD targets before it goes on), closing the gripper, at the top.
 SETTLE, PAUSE, CLOSE, HOLD = 5, 10, 20, 15
@@ -127,7 +127,7 @@ def _arm_plans(
 ) -> Iterator[np.ndarray]:
     """The pick actions with ``rig``'s arm for each of the ``ranked`` candidates that has a
     collision-free plan in ``free`` (the arm's world), in order. The fingers open
-    ``FINGER_CLEARANCE`` wider than the grasped width on each side; fully only where no
+    to the grasp's ``opening`` (a clearance each side of the object); fully only where no
     candidate works so (a finger inside a container). Motions run ``speedup`` times the
     rig's joint limits."""
     start, closed = rig.start, rig.gripper.closed
@@ -135,7 +135,7 @@ def _arm_plans(
     for wide in (False, True):
         planned = False
         for cand in ranked:
-            width = rig.gripper.max_width if wide else cand.width + 2.0 * FINGER_CLEARANCE
+            width = rig.gripper.max_width if wide else opening(cand.width)
             paths = _grasp_and_lift(env, rig.opened(width), cand)
             if paths is None:
                 continue
@@ -183,7 +183,7 @@ def plan_pick(
             continue
         rig = Rig.from_env(env, arm)
         free = CollisionWorld.from_env(env, rig.kin)
-        ranked = list(islice(candidates(env, rig, free), MAX_CANDIDATES))
+        ranked = list(islice(candidates(env, rig), MAX_CANDIDATES))
         if ranked:
             reason = "no_plan"
         for actions in _arm_plans(env, rig, free, ranked, speedup):
