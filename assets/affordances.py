@@ -4,7 +4,7 @@ Each collision part offers top-down grasps at its top: the fingers close along a
 axis of the part's cross-section. A grasp is kept when the part's width along that axis fits
 the gripper's opening, the grasp centre is high enough for the fingertips to clear the table,
 and no other part rises above the grasp inside the fingers' column. A standing stick (a
-reed) offers none.
+reed) offers none. A container that fits the hand is also held around its whole section.
 """
 
 from __future__ import annotations
@@ -15,7 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .catalog import Instance
-from .parts import Part, quat_to_matrix
+from .parts import Part, quat_to_matrix, union_bounds
 
 DOWN = (0.0, 0.0, -1.0)
 MARGIN = 0.005  # free opening left on each side of a grasp, metres
@@ -100,12 +100,12 @@ def contains(part: Part, points: np.ndarray) -> np.ndarray:
 
 
 def _blocked(
-    part: Part, top: float, z: float, axis: np.ndarray, width: float, solids: list[Part]
+    center: np.ndarray, top: float, z: float, axis: np.ndarray, width: float, others: list[Part]
 ) -> bool:
-    """A finger or the palm would be inside another part: sample the finger pads beside the
-    grasped part and the palm above the grasp."""
+    """A finger or the palm would be inside one of ``others``: sample the finger pads beside
+    the section at ``center`` (height ``z``, ``width`` along ``axis``, its top at ``top``)
+    and the palm above the grasp."""
     normal = np.array([-axis[1], axis[0], 0.0])
-    center = section_center(part, z)
     pads = [
         center + a * axis * (width / 2 + 0.006) + b * normal + np.array([0, 0, h])
         for a in (-1, 1)
@@ -118,14 +118,14 @@ def _blocked(
         for b in (-FINGER_HALF_WIDTH, 0.0, FINGER_HALF_WIDTH)
     ]
     points = np.array(pads + palm)
-    return any(contains(other, points).any() for other in solids if other is not part)
+    return any(contains(other, points).any() for other in others)
 
 
 def grasp_affordances(inst: Instance, max_opening: float = 0.08) -> list[Grasp]:
     """Top-down grasps of ``inst`` for a gripper opening at most ``max_opening`` metres,
     highest first."""
     solids = [p for p in inst.parts if not p.visual_only]
-    grasps = []
+    grasps = enveloping_grasps(inst, max_opening)
     for part in solids:
         lo, hi = part.bounds()
         top, height = float(hi[2]), float(hi[2] - lo[2])
@@ -133,10 +133,38 @@ def grasp_affordances(inst: Instance, max_opening: float = 0.08) -> list[Grasp]:
         widths = _horizontal_widths(part)
         if z < MIN_HEIGHT or height < MIN_PART_HEIGHT or _stick(widths, height):
             continue
+        others = [p for p in solids if p is not part]
         for axis, width in widths:
+            center = section_center(part, z)
             if 0.003 <= width <= max_opening - 2 * MARGIN and not _blocked(
-                part, top, z, axis, width, solids
+                center, top, z, axis, width, others
             ):
-                center = tuple(float(v) for v in section_center(part, z))
-                grasps.append(Grasp(center, DOWN, tuple(float(v) for v in axis), width))
+                grasps.append(_grasp(center, axis, width))
     return sorted(grasps, key=lambda g: (-g.center[2], g.width))
+
+
+def _grasp(center: np.ndarray, axis: np.ndarray, width: float) -> Grasp:
+    return Grasp(tuple(float(v) for v in center), DOWN, tuple(float(v) for v in axis), width)
+
+
+def enveloping_grasps(inst: Instance, max_opening: float = 0.08) -> list[Grasp]:
+    """A container's grasps around its whole section just below its top, along its x and
+    y axes: a cup's ring of wall pieces held from outside rather than by one piece of its
+    rim (which a heavy cup turns out of)."""
+    solids = [p for p in inst.parts if not p.visual_only]
+    if not inst.is_container:
+        return []
+    lo, hi = union_bounds(solids)
+    top = float(hi[2])
+    z = top - min(FINGER_DEPTH, float(hi[2] - lo[2]) / 2)
+    section = [p for p in solids if p.bounds()[0][2] <= z <= p.bounds()[1][2]]
+    if len(section) < 2 or z < MIN_HEIGHT:
+        return []
+    slo, shi = union_bounds(section)
+    center = np.array([*(0.5 * (slo[:2] + shi[:2])), z])
+    grasps = []
+    for k in (0, 1):
+        axis, width = np.eye(3)[k], float(shi[k] - slo[k])
+        if width <= max_opening - 2 * MARGIN and not _blocked(center, top, z, axis, width, solids):
+            grasps.append(_grasp(center, axis, width))
+    return grasps

@@ -123,3 +123,18 @@ def test_no_grasp_holds_the_tip_of_a_standing_stick():
         assert reeds and grasps
         neck_top = max(p.bounds()[1][2] for p in inst.parts if not p.name.startswith("reed"))
         assert all(g.center[2] <= neck_top for g in grasps), inst.uuid
+
+
+def test_a_cup_that_fits_the_hand_is_also_held_around_its_whole_rim():
+    from instructmove_ms.assets.affordances import enveloping_grasps, grasp_affordances
+
+    for inst in load_snapshot().of_category("coffee_cup"):
+        around = enveloping_grasps(inst, max_opening=0.1)
+        assert around and set(around) <= set(grasp_affordances(inst, max_opening=0.1))
+        walls = [p for p in inst.parts if not p.visual_only and p.bounds()[1][2] >= inst.height]
+        lo, hi = np.min([p.bounds()[0] for p in walls], 0), np.max([p.bounds()[1] for p in walls], 0)
+        for g in around:
+            axis = int(np.argmax(np.abs(g.closing)))
+            assert g.width >= hi[axis] - lo[axis] - 1e-9  # the fingers close outside the rim
+            assert np.allclose(g.center[:2], 0.5 * (lo + hi)[:2], atol=0.02)
+    assert not enveloping_grasps(load_snapshot().of_category("apple")[0], max_opening=0.1)
