@@ -6,18 +6,19 @@ from __future__ import annotations
 
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass
+from itertools import product
 
 import numpy as np
 import sapien
 
-from instructmove_ms.assets.affordances import grasp_affordances
+from instructmove_ms.assets.affordances import enveloping_grasps, grasp_affordances
 from instructmove_ms.planning import CollisionWorld, Rig
 
 #: Leans (rad) of the approach away from the arm's shoulder, tried in this order: a far or
 #: high grasp that the hand cannot reach pointing straight down it reaches leaned.
 LEANS = np.deg2rad([0.0, 4.0, 8.0, 12.0, 16.0, 20.0, 25.0, 30.0, 37.5, 45.0])
 #: Distances (m) back along the approach from the grasp to the pre-grasp, longest first.
-PRE_GRASP = (0.10, 0.05, 0.03)
+PRE_GRASP = (0.10, 0.07, 0.05, 0.03)
 #: Metres the fingertips clear the target's top by at the pre-grasp (the arm lags its plan).
 PRE_CLEARANCE = 0.01
 #: Cost (rad of joint motion) per metre between a grasp and the middle of the target's box
@@ -35,11 +36,12 @@ class GraspFrame:
     """A grasp affordance of the target in the robot's base frame: ``pose`` has its y axis
     along the closing axis and its z axis along the approach; ``width`` is the object's
     width between the fingers, ``cost`` its ranking cost besides joint motion (off the
-    box's middle, turned)."""
+    box's middle, turned); ``enveloping``: around a container's whole section."""
 
     pose: sapien.Pose
     width: float
     cost: float
+    enveloping: bool = False
 
 
 @dataclass(frozen=True)
@@ -73,6 +75,7 @@ def grasp_frames(env, max_width: float) -> list[GraspFrame]:
     rot = obj.to_transformation_matrix()[:3, :3]
     lo, hi = inst.bounds
     middle = (obj * sapien.Pose(0.5 * (lo + hi))).p
+    whole = set(enveloping_grasps(inst, max_opening=max_width))
     frames = []
     for grasp in grasp_affordances(inst, max_opening=max_width):
         z = rot @ np.asarray(grasp.approach)
@@ -89,7 +92,8 @@ def grasp_frames(env, max_width: float) -> list[GraspFrame]:
                 matrix = np.eye(4)
                 matrix[:3, :3] = np.stack([np.cross(y, z), y, z], axis=1)
                 matrix[:3, 3] = center
-                frames.append(GraspFrame(sapien.Pose(matrix), width, offset + YAW_COST * abs(yaw)))
+                cost = offset + YAW_COST * abs(yaw)
+                frames.append(GraspFrame(sapien.Pose(matrix), width, cost, grasp in whole))
     return frames
 
 
@@ -161,26 +165,28 @@ def candidates(env, rig: Rig) -> Iterator[Candidate]:
     target by ``PRE_CLEARANCE``) has a collision-free IK solution from which the hand,
     its fingers at the grasp's ``opening``, reaches the grasp touching nothing but the
     table and the target (a 7-joint arm's elbow kept off a tall neighbour, a finger off a
-    neighbour lying close); within a lean, the cheapest first. Each lean is solved only
-    when asked for."""
+    neighbour lying close); within a lean, the cheapest first. A container's enveloping
+    grasps go first at every lean, then the others. Each lean is solved only when asked
+    for."""
     frames = grasp_frames(env, rig.gripper.max_width)
     worlds: dict[float, CollisionWorld] = {}
-    for width in {frame.width for frame in frames}:
-        worlds[width] = CollisionWorld.from_env(env, rig.opened(opening(width)).kin)
     pose, _, hi = target_box(env)
     clear = (pose * sapien.Pose(hi)).p[2] + PRE_CLEARANCE
     start = rig.start
     below = {"table", f"object_{env.unwrapped.episode.target}"}
-    for lean in LEANS:
+    for tier, lean in product((True, False), LEANS):
         found = []
-        for frame in frames:
+        for frame in (f for f in frames if f.enveloping == tier):
+            width = round(opening(frame.width), 3)
+            if width not in worlds:
+                worlds[width] = CollisionWorld.from_env(env, rig.opened(width).kin)
             for grasp in leaned(frame.pose, rig.shoulder, lean):
                 tcp = grasp * rig.gripper.tcp_in_grasp
                 for distance in PRE_GRASP:
                     pre = back_off(tcp, distance)
                     if back_off(pre, -rig.tip_depth).p[2] < clear:
                         break
-                    accept = descends(rig, worlds[frame.width], tcp, below)
+                    accept = descends(rig, worlds[width], tcp, below)
                     q_pre = rig.kin.ik(pre, seeds=[start], accept=accept)
                     if q_pre is not None:
                         cost = float(np.abs(q_pre - start).sum()) + frame.cost
