@@ -10,11 +10,11 @@ import instructmove_ms  # noqa: F401  (registers envs and robots)
 ENV_ID = "PickCategory-InstructMove"
 
 
-def make_env(**kwargs):
+def make_env(env_id: str = ENV_ID, **kwargs):
     kwargs.setdefault("robot_uids", "franka")  # the scripted tests drive a Franka
     kwargs.setdefault("obs_mode", "state")
     kwargs.setdefault("render_backend", "none")
-    return gym.make(ENV_ID, **kwargs)
+    return gym.make(env_id, **kwargs)
 
 
 @pytest.fixture(scope="module")

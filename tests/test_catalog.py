@@ -132,7 +132,10 @@ def test_a_cup_that_fits_the_hand_is_also_held_around_its_whole_rim():
         around = enveloping_grasps(inst, max_opening=0.1)
         assert around and set(around) <= set(grasp_affordances(inst, max_opening=0.1))
         walls = [p for p in inst.parts if not p.visual_only and p.bounds()[1][2] >= inst.height]
-        lo, hi = np.min([p.bounds()[0] for p in walls], 0), np.max([p.bounds()[1] for p in walls], 0)
+        lo, hi = (
+            np.min([p.bounds()[0] for p in walls], 0),
+            np.max([p.bounds()[1] for p in walls], 0),
+        )
         for g in around:
             axis = int(np.argmax(np.abs(g.closing)))
             assert g.width >= hi[axis] - lo[axis] - 1e-9  # the fingers close outside the rim

@@ -8,6 +8,7 @@ import pytest
 import torch
 
 from conftest import make_env
+from instructmove_ms.assets.affordances import enveloping_grasps
 from instructmove_ms.demos import pick
 from instructmove_ms.demos.contacts import FORCE_LIMIT, collisions
 from instructmove_ms.planning import Rig, arm_order
@@ -72,6 +73,26 @@ def test_planned_pick_lifts_target_and_touches_nothing_else(envs, robot, seed):
     assert not worst, f"robot pressed on more than {FORCE_LIMIT} N: {worst}"
     assert rise > 0.05, f"the target rose {rise:.3f} m"
     assert bool(info["success"][0])
+
+
+def test_a_cup_on_a_saucer_is_held_around_its_rim():
+    """PickAttribute seed 7: a 0.35 kg ceramic cup on its saucer. A finger at one wall piece
+    lets it turn out; the hand opens wider than the cup and closes around it."""
+    env = make_env(
+        robot_uids="piperx", control_mode="pd_joint_pos", env_id="PickAttribute-InstructMove"
+    )
+    env.reset(seed=7)
+    u = env.unwrapped
+    cup = u.catalog[u.episode.objects[u.episode.target].uuid]
+    assert cup.category == "coffee_cup"
+    actions = pick.plan_pick(env)
+    assert not isinstance(actions, str), actions
+    rig = Rig.from_env(env, _moved_arm(env, actions))
+    rim = min(g.width for g in enveloping_grasps(cup, rig.gripper.max_width))
+    assert actions[0, rig.gripper_slot] > rim  # opened around the whole cup
+    info, rise, worst = _checked_rollout(env, actions)
+    env.close()
+    assert bool(info["success"][0]) and rise > 0.05 and not worst, (rise, worst)
 
 
 def test_piperx_picks_with_the_nearer_arm(envs):
