@@ -3,8 +3,8 @@
 Each collision part offers top-down grasps at its top: the fingers close along a horizontal
 axis of the part's cross-section. A grasp is kept when the part's width along that axis fits
 the gripper's opening, the grasp centre is high enough for the fingertips to clear the table,
-and no other part rises above the grasp inside the fingers' column. A standing stick (a
-reed) offers none. A container that fits the hand is also held around its whole section.
+and no other part rises above the grasp inside the fingers' column. A container that fits
+the hand is also held around its whole section.
 """
 
 from __future__ import annotations
@@ -24,11 +24,6 @@ MIN_HEIGHT = 0.004  # grasp centres lower than this would put the fingertips int
 FINGER_HALF_WIDTH = 0.012
 PALM_HEIGHT = 0.045  # the palm sits this far above the grasp centre
 MIN_PART_HEIGHT = 0.004  # thinner parts (a pull tab) give the fingers nothing to hold
-#: A standing stick (a diffuser's reed, a nozzle): every horizontal section narrower than
-#: ``STICK_WIDTH`` and the part over ``STICK_SLENDERNESS`` times taller. Fingers at its top
-#: would hold the object by a tip that bends and turns in them.
-STICK_WIDTH = 0.006
-STICK_SLENDERNESS = 10.0
 
 
 @dataclass(frozen=True)
@@ -65,12 +60,6 @@ def _horizontal_widths(part: Part) -> list[tuple[np.ndarray, float]]:
             flat = np.array([axis[0], axis[1], 0.0])
             out.append((flat / np.linalg.norm(flat), float(width) / math.cos(tilt)))
     return out
-
-
-def _stick(widths: list[tuple[np.ndarray, float]], height: float) -> bool:
-    """A part with these horizontal ``widths`` and ``height`` is a standing stick."""
-    widest = max((w for _, w in widths), default=0.0)
-    return widest < STICK_WIDTH and height > STICK_SLENDERNESS * widest
 
 
 def section_center(part: Part, z: float) -> np.ndarray:
@@ -130,11 +119,10 @@ def grasp_affordances(inst: Instance, max_opening: float = 0.08) -> list[Grasp]:
         lo, hi = part.bounds()
         top, height = float(hi[2]), float(hi[2] - lo[2])
         z = top - min(FINGER_DEPTH, height / 2)
-        widths = _horizontal_widths(part)
-        if z < MIN_HEIGHT or height < MIN_PART_HEIGHT or _stick(widths, height):
+        if z < MIN_HEIGHT or height < MIN_PART_HEIGHT:
             continue
         others = [p for p in solids if p is not part]
-        for axis, width in widths:
+        for axis, width in _horizontal_widths(part):
             center = section_center(part, z)
             if 0.003 <= width <= max_opening - 2 * MARGIN and not _blocked(
                 center, top, z, axis, width, others
