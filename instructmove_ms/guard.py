@@ -52,13 +52,8 @@ def check_action(action: Any, dim: int, num_envs: int) -> torch.Tensor | np.ndar
 def failed_result(spec: EpisodeSpec) -> EpisodeResult:
     """The score of an episode the policy failed: nothing achieved."""
     stages = PLACE_STAGES if spec.family == "place_a2b" else PICK_STAGES
-    return EpisodeResult(
-        family=spec.family,
-        robot=spec.robot,
-        split=spec.split,
-        condition=spec.condition,
-        seed=spec.seed,
-        num_goals=spec.num_goals,
+    return EpisodeResult.of(
+        spec,
         stages=dict.fromkeys(stages, False),
         success=False,
         stage_score=0.0,

@@ -38,6 +38,19 @@ class EpisodeResult:
     control_error: bool  # the right object was reached, the task not completed
     shared: tuple[str, ...] = field(default=())  # attributes a wrong choice shares with target
 
+    @classmethod
+    def of(cls, spec: EpisodeSpec, **scores) -> EpisodeResult:
+        """The result of episode ``spec`` with the given stages and scores."""
+        return cls(
+            family=spec.family,
+            robot=spec.robot,
+            split=spec.split,
+            condition=spec.condition,
+            seed=spec.seed,
+            num_goals=spec.num_goals,
+            **scores,
+        )
+
     def to_dict(self) -> dict:
         return asdict(self)
 
@@ -68,13 +81,8 @@ def score_episode(spec: EpisodeSpec, info: dict, catalog: Catalog) -> EpisodeRes
     grounding = has_target and wrong >= 0
     reached = stages["reach_pick" if place else "reach"]
     success = bool(_value(info, "success"))
-    return EpisodeResult(
-        family=spec.family,
-        robot=spec.robot,
-        split=spec.split,
-        condition=spec.condition,
-        seed=spec.seed,
-        num_goals=spec.num_goals,
+    return EpisodeResult.of(
+        spec,
         stages=stages,
         success=success,
         stage_score=float(_value(info, "stage_score")),
