@@ -11,8 +11,8 @@ from instructmove_ms.tasks import TASKS
 EPISODES = 8
 
 
-#: Each family with its default robot; PlaceA2B with the Franka (the PiperX's arms cannot
-#: carry every target across the table to every receptacle: see the README).
+#: Each pick family with its default robot and PlaceA2B with the Franka (on the PiperX the
+#: first grasp plan sometimes leaves no release into the goal: see the README).
 CASES = [(t, s.default_robot) for t, s in sorted(TASKS.items()) if s.cue != "place"]
 CASES.append(("PlaceA2B-InstructMove", "franka"))
 
@@ -24,9 +24,9 @@ def test_oracle_scores_on_the_stored_set(env_id, robot, tmp_path):
     (group,) = summary["groups"]
     assert group["robot"] == robot and group["episodes"] == EPISODES
     assert summary["errors"] == 0
-    # A regression floor, not the 0.95 target: some far, low targets have no collision-free
-    # PiperX plan (measured S on the first 8 episodes: 0.75 to 1.0 by family).
-    assert group["stage_score"] >= 0.75 and group["grounding_error"] == 0.0
+    # A regression floor on 8 episodes (measured S: 0.94 to 1.0 by family, 0.97 to 1.0 over
+    # the first 40 episodes).
+    assert group["stage_score"] >= 0.875 and group["grounding_error"] == 0.0
 
 
 def test_oracle_without_a_target_holds_still(tmp_path):
