@@ -32,7 +32,9 @@ def replay(traj: Path, obs_mode: str, control_mode: str | None, procs: int) -> s
     result = subprocess.run(cmd, cwd=traj.parent, capture_output=True, text=True)
     found = re.search(r"Replayed (\d+) episodes, (\d+)/\d+", result.stdout + result.stderr)
     if result.returncode or not found:
-        return "failed: " + (result.stderr.strip().splitlines() or ["?"])[-1][:120]
+        lines = result.stderr.strip().splitlines() or ["?"]
+        errors = [line for line in lines if re.match(r"\w+(Error|Exception)\b", line)]
+        return "failed: " + (errors or lines)[-1][:120]
     return f"{found[2]}/{found[1]}"
 
 
