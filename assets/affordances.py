@@ -122,8 +122,8 @@ def grasp_affordances(inst: Instance, max_opening: float = 0.08) -> list[Grasp]:
         if z < MIN_HEIGHT or height < MIN_PART_HEIGHT:
             continue
         others = [p for p in solids if p is not part]
+        center = section_center(part, z)
         for axis, width in _horizontal_widths(part):
-            center = section_center(part, z)
             if 0.003 <= width <= max_opening - 2 * MARGIN and not _blocked(
                 center, top, z, axis, width, others
             ):
@@ -139,9 +139,9 @@ def enveloping_grasps(inst: Instance, max_opening: float = 0.08) -> list[Grasp]:
     """A container's grasps around its whole section just below its top, along its x and
     y axes: a cup's ring of wall pieces held from outside rather than by one piece of its
     rim (which a heavy cup turns out of)."""
-    solids = [p for p in inst.parts if not p.visual_only]
     if not inst.is_container:
         return []
+    solids = [p for p in inst.parts if not p.visual_only]
     lo, hi = union_bounds(solids)
     top = float(hi[2])
     z = top - min(FINGER_DEPTH, float(hi[2] - lo[2]) / 2)
