@@ -13,6 +13,7 @@ import numpy as np
 import pytest
 from mani_skill.utils.wrappers import RecordEpisode
 
+from instructmove_ms import heldout
 from instructmove_ms.demos.place import PLACE_STAGES, goal_interior
 from instructmove_ms.demos.synthesis import synthesizer
 
@@ -130,5 +131,41 @@ def test_piperx_relays_a_far_goal_to_its_other_arm():
     assert {first, last} == {0, 1}
     switch = next(i for i, g in enumerate(grippers) if g[last])
     assert not any(g[first] for g in grippers[switch:]), "both arms held the target at once"
+    assert np.all(np.abs(outcome["local"][:2]) <= outcome["half"])
+    assert -0.01 < outcome["local"][2] < 0.03 and not outcome["grasped"]
+
+
+def test_piperx_leans_its_hand_into_a_far_receptacle():
+    """Stored episode 7: a figurine goes into a storage box beyond an upright hand's reach of
+    either arm; the arm that picks it leans its hand away from its shoulder over the box
+    (no relay) and lets go there."""
+    spec = heldout.load_set(TASK, "piperx", "seen")[7]
+    env = gym.make(
+        TASK,
+        robot_uids="piperx",
+        obs_mode="state",
+        control_mode="pd_joint_pos",
+        render_backend="none",
+    )
+    env.reset(options={"episode": spec})
+    u = env.unwrapped
+    target = u.objects[u.episode.target]
+    holds = []  # (arm, TCP's tilt off straight down in degrees) while held
+
+    def watch(action):
+        _, _, _, _, info = step(action)
+        for arm, link in enumerate(u.agent.tcp_links):
+            if bool(u.agent.is_grasping_arm(target, arm)[0]):
+                down = link.pose.sp.to_transformation_matrix()[:3, 2]
+                holds.append((arm, float(np.degrees(np.arccos(np.clip(-down[2], -1.0, 1.0))))))
+        return None, None, None, None, info
+
+    step, env.step = env.step, watch
+    flags, reason = synthesizer(TASK)(env)
+    outcome = _outcome(env, flags, reason)
+    env.close()
+    assert reason is None
+    assert len({arm for arm, _ in holds}) == 1, "the target was relayed"
+    assert holds[-1][1] > 10.0, f"released with the hand {holds[-1][1]:.0f} deg off vertical"
     assert np.all(np.abs(outcome["local"][:2]) <= outcome["half"])
     assert -0.01 < outcome["local"][2] < 0.03 and not outcome["grasped"]

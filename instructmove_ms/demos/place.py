@@ -4,9 +4,10 @@ Recipe: the planned pick of ``demos.pick`` (grasp, lift, hold) runs first; the p
 planned closed loop from the live state: the arm's configuration and the object's actual pose
 in the hand. Release poses hold the object over the goal receptacle's interior, set upright
 where the grasp tilted it (else as held), turned about the vertical to line up with the
-interior (a few yaws), as low as the hand clears the receptacle (deep bins: dropped from above
-the rim). An OMPL path leads above the release pose, a straight descent reaches it, the
-gripper opens and the hand retreats straight up.
+interior (a few yaws), leaned with the hand away from the shoulder where a far receptacle
+asks for it, as low as the hand clears the receptacle (deep bins: dropped from above the
+rim). An OMPL path leads above the release pose, a straight descent reaches it, the gripper
+opens and the hand retreats straight up.
 """
 
 from __future__ import annotations
@@ -26,6 +27,8 @@ from instructmove_ms.planning import (
     time_parametrize,
 )
 
+from .grasps import across, lean_away
+
 #: Per-step stage flags of a place rollout (PlaceA2B's ``info`` keys; success is place).
 PLACE_STAGES = ("reach_pick", "lift_pick", "reach_place", "place", "success")
 CLEARANCE = 0.01  # metres between the object's bottom and the receptacle floor at release
@@ -36,6 +39,10 @@ RETREAT = 0.10  # metres the open hand moves up
 FIT_MARGIN = 0.005  # metres kept between the object's footprint and the interior's walls
 UPRIGHT = 0.05  # rad: releases tilted less count as upright (preferred)
 YAW_OFFSETS = (0.0, 0.25, -0.25)  # rad, around each alignment with the interior's axes
+#: Leans (rad) of the hand and object together away from the shoulder, tried in turn per
+#: orientation where it has no release: a far receptacle is reached with a leaned hand. A
+#: leaned object's footprint must fit the interior.
+PLACE_LEANS = np.deg2rad([0.0, 15.0, 30.0, 45.0])
 MAX_RELEASES = 8  # the best releases a path is planned to, at most
 OPEN_STEPS = 12  # steps the gripper gets to open
 SETTLE_STEPS = 40  # steps at most for a dropped object to come to rest
@@ -142,8 +149,9 @@ def _fits(interior: Interior, rotation: np.ndarray, corners: np.ndarray) -> bool
 
 
 def releases(env, rig: Rig, world: CollisionWorld, interior: Interior) -> list[Release]:
-    """The lowest collision-free release of every orientation, best first: the footprint
-    fits, then the object stands upright, then the lowest, then the least joint motion."""
+    """The lowest collision-free release of every orientation, at the least of
+    ``PLACE_LEANS`` that has one, best first: the footprint fits, then the object stands
+    upright, then the lowest, then the least joint motion."""
     u = env.unwrapped
     spec = u.episode
     lo, hi = u.catalog[spec.objects[spec.target].uuid].bounds
@@ -151,17 +159,51 @@ def releases(env, rig: Rig, world: CollisionWorld, interior: Interior) -> list[R
     held = u.agent.robot.pose.sp.inv() * u.objects[spec.target].pose.sp
     grip_inv = held.inv() * rig.kin.fk(rig.start)  # the TCP in the object's frame
     heights = np.arange(CLEARANCE, interior.height + ABOVE_RIM, HEIGHT_STEP)
+    grip = grip_inv.to_transformation_matrix()[:3, :3]
     found = []
     for rotation, tilt in _orientations(interior, held.to_transformation_matrix()[:3, :3]):
-        fits = _fits(interior, rotation, corners)
-        for height in heights:
-            tcp = _object_pose(interior, rotation, corners, height) * grip_inv
-            q = rig.kin.ik(tcp, seeds=[rig.start], accept=lambda q: not world.in_collision(q))
-            if q is not None:
+        for lean in PLACE_LEANS:
+            turned = _lean(interior.frame[:3, 3], rotation @ grip, rig, lean) @ rotation
+            fits = _fits(interior, turned, corners)
+            if lean > 0.0 and not fits:
+                break  # leaning further only widens the footprint
+            hit = _lowest(rig, world, interior, turned, corners, grip_inv, heights)
+            if hit is not None:
+                q, tcp, height = hit
                 cost = float(np.abs(q - rig.start).sum())
-                found.append(Release(q, tcp, float(height), fits, tilt, cost))
+                found.append(Release(q, tcp, height, fits, tilt + lean, cost))
                 break
     return sorted(found, key=lambda r: (not r.fits, r.tilt > UPRIGHT, r.height, r.cost))
+
+
+def _lowest(
+    rig: Rig,
+    world: CollisionWorld,
+    interior: Interior,
+    rotation: np.ndarray,
+    corners: np.ndarray,
+    grip_inv: sapien.Pose,
+    heights: np.ndarray,
+) -> tuple[np.ndarray, sapien.Pose, float] | None:
+    """(configuration, TCP, height) of the lowest of ``heights`` at which the object, turned
+    to ``rotation`` and held by ``grip_inv`` (the TCP in its frame), has a collision-free
+    IK solution over the interior; None where none has."""
+    for height in heights:
+        tcp = _object_pose(interior, rotation, corners, height) * grip_inv
+        q = rig.kin.ik(tcp, seeds=[rig.start], accept=lambda q: not world.in_collision(q))
+        if q is not None:
+            return q, tcp, float(height)
+    return None
+
+
+def _lean(point: np.ndarray, hand: np.ndarray, rig: Rig, angle: float) -> np.ndarray:
+    """The rotation (base frame) that leans a hand at ``point`` with orientation ``hand``
+    away from the shoulder by ``angle`` rad."""
+    frame = np.eye(4)
+    frame[:3, :3], frame[:3, 3] = hand, point
+    tcp = sapien.Pose(frame)
+    leaned = lean_away(tcp, across(tcp, rig.shoulder), rig.shoulder, angle)
+    return leaned.to_transformation_matrix()[:3, :3] @ hand.T
 
 
 def _above(pose: sapien.Pose, dz: float) -> sapien.Pose:
