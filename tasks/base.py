@@ -11,7 +11,11 @@ import torch
 from mani_skill.envs.sapien_env import BaseEnv
 from mani_skill.sensors.camera import CameraConfig
 from mani_skill.utils import sapien_utils
-from mani_skill.utils.geometry.rotation_conversions import quaternion_apply, quaternion_invert
+from mani_skill.utils.geometry.rotation_conversions import (
+    quaternion_apply,
+    quaternion_invert,
+    quaternion_multiply,
+)
 from mani_skill.utils.structs.actor import Actor
 from mani_skill.utils.structs.pose import Pose
 from mani_skill.utils.structs.types import SimConfig
@@ -237,15 +241,27 @@ class InstructMoveEnv(BaseEnv):
         rel = points - pos[rows, g]
         return quaternion_apply(quaternion_invert(quat[rows, g]), rel) - self._goal_center
 
+    def _target_in_goal(self, pos: torch.Tensor, quat: torch.Tensor):
+        """The centre (N, 3) and the lowest point's height (N,) of the target's box in the
+        goal receptacle's frame, in any orientation (a cup on its side, an egg upside down)."""
+        rows = torch.arange(self.num_envs, device=self.device)
+        t, g = self._target.clamp(min=0), self._goal.clamp(min=0)
+        centre = pos[rows, t] + quaternion_apply(quat[rows, t], self._box_center[rows, t])
+        local = self._goal_frame(centre, pos, quat)
+        turn = quaternion_multiply(quaternion_invert(quat[rows, g]), quat[rows, t])
+        axes = torch.diag_embed(self._box_half[rows, t])  # (N, 3, 3): half extents as rows
+        depth = sum(quaternion_apply(turn, axes[:, j])[:, 2].abs() for j in range(3))
+        return local, local[:, 2] - depth
+
     def _place_flags(self, pos: torch.Tensor, quat: torch.Tensor, grasped: torch.Tensor):
         """(over the goal interior, resting on its floor and released) for the target."""
         rows = torch.arange(self.num_envs, device=self.device)
         t = self._target.clamp(min=0)
-        local = self._goal_frame(pos[rows, t], pos, quat)
+        local, bottom = self._target_in_goal(pos, quat)
         over = (self._goal >= 0) & (local[:, :2].abs() <= self._goal_half).all(dim=1)
         speed = torch.stack([o.linear_velocity for o in self.objects], dim=1)[rows, t]
         th = self.task.thresholds
-        resting = (local[:, 2] > -0.01) & (local[:, 2] < th.place_height)
+        resting = (bottom > -0.01) & (bottom < th.place_height)
         still = torch.linalg.norm(speed, dim=1) < th.place_speed
         return over, over & resting & still & ~grasped[rows, t]
 

@@ -11,11 +11,14 @@ import gymnasium as gym
 import h5py
 import numpy as np
 import pytest
+import sapien
+import torch
 from mani_skill.utils.wrappers import RecordEpisode
 
 from instructmove_ms import heldout
 from instructmove_ms.demos.place import PLACE_STAGES, goal_interior
 from instructmove_ms.demos.synthesis import synthesizer
+from instructmove_ms.planning import Rig
 
 TASK, ROBOT = "PlaceA2B-InstructMove", "franka"
 STEM = f"{TASK}_{ROBOT}"
@@ -169,3 +172,33 @@ def test_piperx_leans_its_hand_into_a_far_receptacle():
     assert holds[-1][1] > 10.0, f"released with the hand {holds[-1][1]:.0f} deg off vertical"
     assert np.all(np.abs(outcome["local"][:2]) <= outcome["half"])
     assert -0.01 < outcome["local"][2] < 0.03 and not outcome["grasped"]
+
+
+def test_an_object_resting_upside_down_in_the_receptacle_counts_as_placed():
+    """The place check measures the object's lowest point, not its origin (the bottom of its
+    upright box): the target dropped upside down into the goal receptacle is placed once it
+    rests; the same drop next to the receptacle is not."""
+    env = gym.make(
+        TASK, robot_uids=ROBOT, obs_mode="state", control_mode="pd_joint_pos", render_backend="none"
+    )
+    env.reset(seed=1)
+    u = env.unwrapped
+    target = u.objects[u.episode.target]
+    lo, hi = u.catalog[u.episode.objects[u.episode.target].uuid].bounds
+    assert hi[2] - lo[2] > u.task.thresholds.place_height + 0.01  # the origin ends that high
+    interior = goal_interior(env)
+    hold = torch.from_numpy(Rig.from_env(env).hold)[None]
+    placed = []
+    for shift in (0.0, 0.3):  # into the receptacle, then beside it on the table
+        floor = interior.frame[:3, 3] + [0.0, shift, 0.0]
+        floor[2] = floor[2] if shift == 0.0 else 0.0
+        upside_down = sapien.Pose(floor + [0.0, 0.0, hi[2] + 0.02], [0.0, 1.0, 0.0, 0.0])
+        target.set_pose(upside_down)
+        for _ in range(60):
+            env.step(hold)
+        assert target.pose.sp.to_transformation_matrix()[2, 2] < -0.9, "it turned over"
+        pos, quat = u._object_poses()
+        grasped = torch.zeros(pos.shape[:2], dtype=torch.bool)  # nothing holds it
+        placed.append(bool(u._place_flags(pos, quat, grasped)[1][0]))
+    env.close()
+    assert placed == [True, False]
