@@ -15,6 +15,7 @@ import sapien
 import torch
 from mani_skill.utils.wrappers import RecordEpisode
 
+from conftest import make_env
 from instructmove_ms import heldout
 from instructmove_ms.demos.place import PLACE_STAGES, goal_interior
 from instructmove_ms.demos.synthesis import synthesizer
@@ -106,13 +107,7 @@ def test_replay_to_rgb_with_delta_control_reproduces_success(recorded):
 def test_piperx_relays_a_far_goal_to_its_other_arm():
     """Seed 10: the left arm picks the target, cannot reach the goal on the far right, sets
     the target down between the arms and goes back to rest; the right arm places it."""
-    env = gym.make(
-        TASK,
-        robot_uids="piperx",
-        obs_mode="state",
-        control_mode="pd_joint_pos",
-        render_backend="none",
-    )
+    env = make_env(TASK, robot_uids="piperx", control_mode="pd_joint_pos")
     env.reset(seed=10)
     u = env.unwrapped
     target = u.objects[u.episode.target]
@@ -143,13 +138,7 @@ def test_piperx_leans_its_hand_into_a_far_receptacle():
     either arm; the arm that picks it leans its hand away from its shoulder over the box
     (no relay) and lets go there."""
     spec = heldout.load_set(TASK, "piperx", "seen")[7]
-    env = gym.make(
-        TASK,
-        robot_uids="piperx",
-        obs_mode="state",
-        control_mode="pd_joint_pos",
-        render_backend="none",
-    )
+    env = make_env(TASK, robot_uids="piperx", control_mode="pd_joint_pos")
     env.reset(options={"episode": spec})
     u = env.unwrapped
     target = u.objects[u.episode.target]
@@ -178,9 +167,7 @@ def test_an_object_resting_upside_down_in_the_receptacle_counts_as_placed():
     """The place check measures the object's lowest point, not its origin (the bottom of its
     upright box): the target dropped upside down into the goal receptacle is placed once it
     rests; the same drop next to the receptacle is not."""
-    env = gym.make(
-        TASK, robot_uids=ROBOT, obs_mode="state", control_mode="pd_joint_pos", render_backend="none"
-    )
+    env = make_env(TASK, control_mode="pd_joint_pos")
     env.reset(seed=1)
     u = env.unwrapped
     target = u.objects[u.episode.target]
