@@ -221,6 +221,15 @@ def _cmd_demos_generate(args: argparse.Namespace) -> int:
     return 0
 
 
+def _cmd_demos_convert(args: argparse.Namespace) -> int:
+    import instructmove_ms  # noqa: F401  (registration)
+    from instructmove_ms.demos.convert import convert
+
+    report = convert(args.traj, args.control_mode, args.obs_mode, args.out, args.count)
+    print(f"{report.kept}/{report.total} episodes converted successfully -> {report.path}")
+    return 0
+
+
 def _cmd_export_mcap(args: argparse.Namespace) -> int:
     from instructmove_ms.export import ExportSettings, export_trajectory
 
@@ -352,6 +361,15 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--workers", type=int, default=1, help="parallel processes")
     p.add_argument("--shard-size", type=int, default=5, help="demos per resumable shard")
     p.set_defaults(func=_cmd_demos_generate)
+    p = demos.add_parser(
+        "convert", help="pd_joint_pos demos to end-effector control (every arm of the robot)"
+    )
+    p.add_argument("--traj", required=True, help="pd_joint_pos trajectory .h5 (with .json)")
+    p.add_argument("-c", "--control-mode", default="pd_ee_delta_pose", help="target mode")
+    p.add_argument("-o", "--obs-mode", default="state", help="observations to record")
+    p.add_argument("--out", default=None, help="output folder (default: the trajectory's)")
+    p.add_argument("--count", type=int, default=None, help="first episodes only")
+    p.set_defaults(func=_cmd_demos_convert)
     p = sub.add_parser("eval", help="evaluate a policy on a held-out set or evaluator config")
     p.add_argument("--task", default=None, help="env id (not with --config)")
     p.add_argument("--split", default="seen", help="seen, unseen_instance or unseen_category")
@@ -437,7 +455,7 @@ def main(argv: list[str] | None = None) -> int:
     except BrokenPipeError:  # output piped into a reader that stopped (head, less)
         sys.stderr.close()
         return 0
-    except (ValueError, KeyError) as exc:
+    except (ValueError, KeyError, FileNotFoundError) as exc:
         print(f"instructmove: error: {exc}", file=sys.stderr)
         return 2
 
