@@ -1,10 +1,11 @@
 """Demo acceptance: generated demos replayed by ManiSkill's own command.
 
-For every family and robot, writes ``-n`` demos with ``instructmove demos generate`` and
+For every family and robot, writes ``-n`` demos with ``instructmove demos generate``,
 replays them with ``python -m mani_skill.trajectory.replay_trajectory --save-traj`` to the
-rgb observation mode and to the ``pd_joint_delta_pos`` and ``pd_ee_delta_pose`` control
-modes, printing the share of demos whose replay succeeds (target: at least 95%) next to the
-valid-synthesis rate and the seconds each step took.
+rgb observation mode and to the ``pd_joint_delta_pos`` control mode, and converts them to
+``pd_ee_delta_pose`` with ``instructmove demos convert`` (every arm; ManiSkill's converter
+drives one), printing the share of demos whose replay or conversion succeeds (target: at
+least 95%) next to the valid-synthesis rate and the seconds each step took.
 """
 
 from __future__ import annotations
@@ -17,11 +18,13 @@ import tempfile
 import time
 from pathlib import Path
 
+from instructmove_ms.demos.convert import convert
 from instructmove_ms.demos.generate import generate
 from instructmove_ms.tasks import TASKS
 
-#: (observation mode, target control mode) of each replay.
-REPLAYS = (("rgb", None), ("state", "pd_joint_delta_pos"), ("state", "pd_ee_delta_pose"))
+#: (observation mode, target control mode) of each replay by ManiSkill's command.
+REPLAYS = {"rgb": ("rgb", None), "pd_joint_delta_pos": ("state", "pd_joint_delta_pos")}
+EE_MODE = "pd_ee_delta_pose"  # converted with our converter
 
 
 def replay(traj: Path, obs_mode: str, control_mode: str | None, procs: int) -> str:
@@ -44,19 +47,32 @@ def main() -> None:
     parser.add_argument("--task", default=None, help="one env id (default: every family)")
     parser.add_argument("--robot", default=None, help="one robot (default: both)")
     parser.add_argument("--workers", type=int, default=2, help="generator and replay processes")
+    parser.add_argument(
+        "--modes",
+        nargs="+",
+        default=[*REPLAYS, EE_MODE],
+        choices=[*REPLAYS, EE_MODE],
+        help="replays to run (default: all)",
+    )
     args = parser.parse_args()
     for task in [args.task] if args.task else list(TASKS):
         for robot in [args.robot] if args.robot else TASKS[task].supported_robots:
             with tempfile.TemporaryDirectory() as tmp:
                 start = time.perf_counter()
                 report = generate(task, robot, args.n, tmp, workers=args.workers)
-                cells = [f"generated {report.rate:.0%} valid ({time.perf_counter() - start:.0f} s)"]
-                for obs_mode, control_mode in REPLAYS:
+                failed = ", ".join(f"{k} {v}" for k, v in report.failures.items() if v)
+                took = time.perf_counter() - start
+                cells = [
+                    f"generated {report.rate:.0%} valid [{failed or 'no failures'}] ({took:.0f} s)"
+                ]
+                for mode in args.modes:
                     start = time.perf_counter()
-                    saved = replay(report.path, obs_mode, control_mode, args.workers)
-                    took = time.perf_counter() - start
-                    mode = f"{obs_mode}/{control_mode or 'pd_joint_pos'}"
-                    cells.append(f"{mode} {saved} ({took:.0f} s)")
+                    if mode == EE_MODE:
+                        converted = convert(report.path, EE_MODE)
+                        saved = f"{converted.kept}/{converted.total}"
+                    else:
+                        saved = replay(report.path, *REPLAYS[mode], args.workers)
+                    cells.append(f"{mode} {saved} ({time.perf_counter() - start:.0f} s)")
             print(f"{task:28s} {robot:7s} " + "; ".join(cells), flush=True)
 
 
