@@ -261,7 +261,8 @@ class InstructMoveEnv(BaseEnv):
         over = (self._goal >= 0) & (local[:, :2].abs() <= self._goal_half).all(dim=1)
         speed = torch.stack([o.linear_velocity for o in self.objects], dim=1)[rows, t]
         th = self.task.thresholds
-        resting = (bottom > -0.01) & (bottom < th.place_height)
+        # a tilted round object's box dips below the floor: its centre must stay above it
+        resting = (local[:, 2] > -0.01) & (bottom < th.place_height)
         still = torch.linalg.norm(speed, dim=1) < th.place_speed
         return over, over & resting & still & ~grasped[rows, t]
 

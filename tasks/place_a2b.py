@@ -82,8 +82,9 @@ class PlaceA2BEnv(InstructMoveEnv):
       families
     - ``reach_place``: after lift_pick, the centre of the object's box is over the goal
       receptacle's interior (latched)
-    - ``place``: the object rests inside that interior (its lowest point within 0.03 m above
-      the floor, in any orientation; slower than 0.05 m/s) and the robot has released it
+    - ``place``: the object rests inside that interior (its box's lowest point at most
+      0.03 m above the floor and its centre above it, in any orientation; slower than
+      0.05 m/s) and the robot has released it
       (latched); ``success`` equals ``place``;
       ``stage_score`` is S_pnp = 0.25 (reach_pick + lift_pick + reach_place + place)
     """

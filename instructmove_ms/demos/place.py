@@ -45,6 +45,7 @@ YAW_OFFSETS = (0.0, 0.25, -0.25)  # rad, around each alignment with the interior
 PLACE_LEANS = np.deg2rad([0.0, 15.0, 30.0, 45.0])
 MAX_RELEASES = 8  # the best releases a path is planned to, at most
 OPEN_STEPS = 12  # steps the gripper gets to open
+RELEASE_GAP = 0.005  # metres each finger opens away from the released object
 SETTLE_STEPS = 40  # steps at most for a dropped object to come to rest
 SPEEDUPS = (1.0, 1.5, 2.0)  # of the rig's joint limits, where the horizon asks for it
 
@@ -252,11 +253,12 @@ def holding_arm(env) -> int:
 
 
 def timed(rig: Rig, paths: Paths, steps: int) -> np.ndarray:
-    """The place actions of ``paths`` (to the pre-place pose, descent, open-gripper motions),
-    sped up by the least of ``SPEEDUPS`` that fits them into ``steps`` (the fastest where
-    none does)."""
+    """The place actions of ``paths`` (to the pre-place pose, descent, motions with the
+    fingers opened ``RELEASE_GAP`` off the held object), sped up by the least of
+    ``SPEEDUPS`` that fits them into ``steps`` (the fastest where none does)."""
     to_pre, descend, *after = paths
-    open_, closed = rig.gripper.open, rig.gripper.closed
+    # the fingers open just clear of the object: wide open they press on a pot's walls
+    open_, closed = rig.gripper.value(rig.width + 2 * RELEASE_GAP), rig.gripper.closed
     for speedup in SPEEDUPS:
         limits = rig.limits.faster(speedup)
         actions = np.vstack(

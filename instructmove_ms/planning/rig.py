@@ -115,6 +115,12 @@ class Rig:
         """The arm's configuration at ``from_env``."""
         return self.kin.qpos[self.kin.arm]
 
+    @property
+    def width(self) -> float:
+        """How far apart the arm's fingers are in ``kin`` (metres)."""
+        k, sign = self.fingers[0]
+        return 2.0 * sign * float(self.kin.qpos[k])
+
     def opened(self, width: float) -> Rig:
         """This rig with its fingers ``width`` metres apart in ``kin`` (what collision checks
         see)."""
