@@ -32,13 +32,13 @@ import torch
 from mani_skill.agents.controllers import PDEEPosController, PDEEPoseController
 from mani_skill.agents.controllers.pd_joint_pos import PDJointPosController
 from mani_skill.utils.geometry.rotation_conversions import matrix_to_euler_angles
+from mani_skill.utils.gym_utils import inv_scale_action
 from mani_skill.utils.wrappers import RecordEpisode
 from tqdm import tqdm
 
 from instructmove_ms.validation import check_choice
 
-from .pick import PICK_TASKS, STAGES
-from .place import PLACE_STAGES
+from .synthesis import family_stages
 
 MAX_REPEATS = 4  # converted steps per recorded step at most (a clipped delta is repeated)
 FRAME = "root_translation:root_aligned_body_rotation"
@@ -69,9 +69,8 @@ def ee_action(ctrl: PDEEPosController, goal) -> tuple[np.ndarray, bool]:
     had to be clipped."""
     use_target = ctrl.config.use_target and ctrl._target_pose is not None
     current = (ctrl._target_pose if use_target else ctrl.ee_pose_at_base).sp
-    low = ctrl.action_space_low[:3].cpu().numpy()
-    high = ctrl.action_space_high[:3].cpu().numpy()
-    action = (goal.p - current.p - 0.5 * (high + low)) / (0.5 * (high - low))
+    low, high = (b[:3].cpu().numpy() for b in (ctrl.action_space_low, ctrl.action_space_high))
+    action = inv_scale_action(goal.p - current.p, low, high)
     if isinstance(ctrl, PDEEPoseController):  # the controller scales rotation by rot_lower
         goal_rot, current_rot = (p.to_transformation_matrix()[:3, :3] for p in (goal, current))
         euler = matrix_to_euler_angles(torch.from_numpy(goal_rot @ current_rot.T), "XYZ").numpy()
@@ -125,7 +124,7 @@ class Converter:
             source_type="motion_planning",
             source_desc=f"instructmove_ms.demos.convert: pd_joint_pos demos to {control_mode}",
         )
-        self.stages = STAGES if env_id in PICK_TASKS else PLACE_STAGES
+        self.stages = family_stages(env_id)
         self.pin = self.source.unwrapped.agent.robot.create_pinocchio_model()
 
     def step(self, action: np.ndarray) -> list[dict[str, bool]]:

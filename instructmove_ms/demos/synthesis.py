@@ -47,9 +47,14 @@ def synthesize(env, variant: int = 0, stages: tuple[str, ...] = STAGES) -> tuple
     return flags, "place_missed" if "place" in stages else "grasp_slipped"
 
 
+def family_stages(task: str) -> tuple[str, ...]:
+    """The per-step stage flags recorded for ``task``'s family."""
+    return STAGES if task in PICK_TASKS else PLACE_STAGES
+
+
 def synthesizer(task: str) -> Synthesizer:
     """The synthesizer of ``task``'s family."""
-    return synthesize if task in PICK_TASKS else partial(synthesize, stages=PLACE_STAGES)
+    return partial(synthesize, stages=family_stages(task))
 
 
 @dataclass(frozen=True)
