@@ -64,6 +64,13 @@ def target_box(env) -> tuple[sapien.Pose, np.ndarray, np.ndarray]:
     return u.agent.robot.pose.sp.inv() * u.objects[spec.target].pose.sp, lo, hi
 
 
+def box_top(pose: sapien.Pose, lo: np.ndarray, hi: np.ndarray) -> float:
+    """Height of the highest corner of the box ``lo``..``hi`` at ``pose`` (the object may lie
+    turned: an egg rolled over after a relay)."""
+    corners = np.array(list(product(*zip(lo, hi, strict=True))), dtype=float)
+    return float((corners @ pose.to_transformation_matrix()[:3, :3].T)[:, 2].max() + pose.p[2])
+
+
 def grasp_frames(env, max_width: float) -> list[GraspFrame]:
     """The target's grasp affordances for fingers opening ``max_width``, each with both
     closing-axis signs, as given and turned by ``YAWS`` (the width across a turned bar
@@ -170,8 +177,7 @@ def candidates(env, rig: Rig) -> Iterator[Candidate]:
     for."""
     frames = grasp_frames(env, rig.gripper.max_width)
     worlds: dict[float, CollisionWorld] = {}
-    pose, _, hi = target_box(env)
-    clear = (pose * sapien.Pose(hi)).p[2] + PRE_CLEARANCE
+    clear = box_top(*target_box(env)) + PRE_CLEARANCE
     start = rig.start
     below = {"table", f"object_{env.unwrapped.episode.target}"}
     for tier, lean in product((True, False), LEANS):

@@ -22,19 +22,20 @@ from instructmove_ms.planning import (
     arm_order,
     cartesian_path,
     plan_joint_path,
-    time_parametrize,
 )
 
 from .grasps import (
     Candidate,
     across,
     back_off,
+    box_top,
     candidates,
     lean_away,
     opening,
     target_box,
     touches_only,
 )
+from .timing import Segment, fitted, hold, steps_left
 
 PICK_TASKS = ("PickCategory-InstructMove", "PickAttribute-InstructMove", "PickSpatial-InstructMove")
 LIFT = 0.15  # metres the object is lifted where the arm reaches that high
@@ -67,7 +68,7 @@ def _grasp_height(env, rig: Rig, world: CollisionWorld, cand: Candidate) -> sapi
     (``REACH_MARGIN``) or the fingertips would end above both the affordance's grasp centre
     and ``MIN_OVERLAP`` below the target's top."""
     pose, lo, hi = target_box(env)
-    top = (pose * sapien.Pose(hi)).p[2]
+    top = box_top(pose, lo, hi)
     reach = env.unwrapped.task.thresholds.reach - REACH_MARGIN
     below = {"table", f"object_{env.unwrapped.episode.target}"}
     grasp = cand.tcp
@@ -123,15 +124,13 @@ def _lift(rig: Rig, world: CollisionWorld, q: np.ndarray, grasp: sapien.Pose) ->
 
 
 def _arm_plans(
-    env, rig: Rig, free: CollisionWorld, ranked: list[Candidate], speedup: float
+    env, rig: Rig, free: CollisionWorld, ranked: list[Candidate], steps: int
 ) -> Iterator[np.ndarray]:
     """The pick actions with ``rig``'s arm for each of the ``ranked`` candidates that has a
-    collision-free plan in ``free`` (the arm's world), in order. The fingers open
-    to the grasp's ``opening`` (a clearance each side of the object); fully only where no
-    candidate works so (a finger inside a container). Motions run ``speedup`` times the
-    rig's joint limits."""
+    collision-free plan in ``free`` (the arm's world), in order, fitted into ``steps``. The
+    fingers open to the grasp's ``opening`` (a clearance each side of the object); fully
+    only where no candidate works so (a finger inside a container)."""
     start, closed = rig.start, rig.gripper.closed
-    limits = rig.limits.faster(speedup)
     for wide in (False, True):
         planned = False
         for cand in ranked:
@@ -145,24 +144,23 @@ def _arm_plans(
             planned = True
             descend, lift = paths
             open_ = rig.gripper.value(width)
-            yield np.vstack(
-                [
-                    rig.actions(np.repeat(start[None], SETTLE, axis=0), open_),
-                    rig.actions(time_parametrize(to_pre, limits), open_),
-                    rig.actions(np.repeat(to_pre[-1:], PAUSE, axis=0), open_),
-                    rig.actions(time_parametrize(descend, limits), open_),
-                    rig.actions(np.repeat(descend[-1:], PAUSE, axis=0), open_),
-                    rig.actions(np.repeat(descend[-1:], CLOSE, axis=0), closed),
-                    rig.actions(time_parametrize(lift, limits), closed),
-                    rig.actions(np.repeat(lift[-1:], HOLD, axis=0), closed),
-                ]
-            )
+            segments = [
+                hold(start, SETTLE, open_),
+                Segment(to_pre, open_),
+                hold(to_pre[-1], PAUSE, open_),
+                Segment(descend, open_),
+                hold(descend[-1], PAUSE, open_),
+                hold(descend[-1], CLOSE, closed),
+                Segment(lift, closed),
+                hold(lift[-1], HOLD, closed),
+            ]
+            yield fitted(rig, segments, steps)
         if planned:
             return
 
 
 def plan_pick(
-    env, arms: Sequence[int] | None = None, speedup: float = 1.0, skip: int = 0
+    env, arms: Sequence[int] | None = None, steps: int | None = None, skip: int = 0
 ) -> np.ndarray | str:
     """``pd_joint_pos`` actions that pick up the episode's target from the env's current
     state, or the failure reason: ``"no_ik"`` (no collision-free pre-grasp configuration for
@@ -170,10 +168,11 @@ def plan_pick(
     or fewer than ``skip + 1`` plans). ``arms`` (default: all) are tried nearest the target
     first; for an episode with a goal receptacle, nearest the middle between both, so that
     the arm can carry the target there. Each arm's grasp candidates go cheapest first; the
-    first ``skip`` plans are passed over (another grasp after one that slipped). ``speedup``
-    scales the rig's joint limits (a pick after a relay hurries)."""
+    first ``skip`` plans are passed over (another grasp after one that slipped). The motions
+    are sped up where needed to fit into ``steps`` (default: the rest of the horizon)."""
     u = env.unwrapped
     spec, base = u.episode, u.agent.robot.pose.sp.inv()
+    steps = steps_left(env) if steps is None else steps
     point = (base * u.objects[spec.target].pose.sp).p
     if spec.goal_destination >= 0:
         point = (point + (base * u.objects[spec.goal_destination].pose.sp).p) / 2
@@ -186,7 +185,7 @@ def plan_pick(
         ranked = list(islice(candidates(env, rig), MAX_CANDIDATES))
         if ranked:
             reason = "no_plan"
-        for actions in _arm_plans(env, rig, free, ranked, speedup):
+        for actions in _arm_plans(env, rig, free, ranked, steps):
             if skip == 0:
                 return actions
             skip -= 1

@@ -24,10 +24,10 @@ from instructmove_ms.planning import (
     Rig,
     cartesian_path,
     plan_joint_path,
-    time_parametrize,
 )
 
 from .grasps import across, lean_away
+from .timing import Segment, fitted, hold, steps_left
 
 #: Per-step stage flags of a place rollout (PlaceA2B's ``info`` keys; success is place).
 PLACE_STAGES = ("reach_pick", "lift_pick", "reach_place", "place", "success")
@@ -47,7 +47,8 @@ MAX_RELEASES = 8  # the best releases a path is planned to, at most
 OPEN_STEPS = 12  # steps the gripper gets to open
 RELEASE_GAP = 0.005  # metres each finger opens away from the released object
 SETTLE_STEPS = 40  # steps at most for a dropped object to come to rest
-SPEEDUPS = (1.0, 1.5, 2.0)  # of the rig's joint limits, where the horizon asks for it
+#: Steps a pick leaves of the horizon for the place after it: a hurried place and settling.
+PLACE_RESERVE = 120
 
 #: Joint paths of a place: to the pre-place pose and the descent (closed gripper), then the
 #: retreat and any further motions (open gripper).
@@ -252,32 +253,18 @@ def holding_arm(env) -> int:
     return int(torch.linalg.norm(tcps - target, dim=1).argmin())
 
 
-def timed(rig: Rig, paths: Paths, steps: int) -> np.ndarray:
-    """The place actions of ``paths`` (to the pre-place pose, descent, motions with the
-    fingers opened ``RELEASE_GAP`` off the held object), sped up by the least of
-    ``SPEEDUPS`` that fits them into ``steps`` (the fastest where none does)."""
+def segments(rig: Rig, paths: Paths) -> list[Segment]:
+    """The place motions of ``paths``: to the pre-place pose and the descent holding, the
+    fingers opening ``RELEASE_GAP`` off the object, the motions after with them so."""
     to_pre, descend, *after = paths
     # the fingers open just clear of the object: wide open they press on a pot's walls
     open_, closed = rig.gripper.value(rig.width + 2 * RELEASE_GAP), rig.gripper.closed
-    for speedup in SPEEDUPS:
-        limits = rig.limits.faster(speedup)
-        actions = np.vstack(
-            [
-                rig.actions(time_parametrize(to_pre, limits), closed),
-                rig.actions(time_parametrize(descend, limits), closed),
-                rig.actions(np.repeat(descend[-1:], OPEN_STEPS, axis=0), open_),
-                *(rig.actions(time_parametrize(p, limits), open_) for p in after),
-            ]
-        )
-        if len(actions) <= steps:
-            break
-    return actions
-
-
-def steps_left(env) -> int:
-    """Steps left in the episode's horizon."""
-    u = env.unwrapped
-    return u.task.max_episode_steps - int(u.elapsed_steps[0])
+    return [
+        Segment(to_pre, closed),
+        Segment(descend, closed),
+        hold(descend[-1], OPEN_STEPS, open_),
+        *(Segment(p, open_) for p in after),
+    ]
 
 
 def held_world(env, rig: Rig) -> CollisionWorld:
@@ -304,7 +291,7 @@ def plan_release(
     for release in found[:MAX_RELEASES]:
         paths = place_paths(rig, world, release, interior.height, home)
         if paths is not None:
-            return timed(rig, paths, steps)
+            return fitted(rig, segments(rig, paths), steps)
     return "no_plan"
 
 

@@ -12,7 +12,8 @@ import sapien
 
 from instructmove_ms.planning import Rig
 
-from .place import SETTLE_STEPS, Interior, holding_arm, plan_release, steps_left
+from .place import PLACE_RESERVE, SETTLE_STEPS, Interior, holding_arm, plan_release
+from .timing import steps_left
 
 #: Spots (base frame, metres): along the table (x) and across it (y, towards the other arm
 #: from the middle between the shoulders), tried nearest ``SPOT`` first.
@@ -20,8 +21,8 @@ SPOT_X = (0.20, 0.25, 0.30, 0.35, 0.40, 0.45, 0.50)
 SPOT_Y = (-0.15, -0.10, -0.05, 0.0, 0.05, 0.10, 0.15, 0.20, 0.25)
 SPOT = (0.33, 0.05)
 GAP = 0.03  # metres between the target's footprint (a circle round its box) and other boxes
-#: Steps the relay leaves of the horizon for the other arm's pick and place.
-RESERVE = 200
+#: Steps the relay leaves of the horizon for the other arm's pick (hurried) and place.
+RESERVE = 130 + PLACE_RESERVE
 
 
 def spots(env, holder: int) -> list[np.ndarray]:

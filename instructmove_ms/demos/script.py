@@ -11,8 +11,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from .pick import plan_pick
-from .place import SPEEDUPS, plan_place
+from .place import PLACE_RESERVE, plan_place
 from .relay import other_arm, plan_relay
+from .timing import steps_left
 
 
 @dataclass
@@ -43,7 +44,8 @@ class MotionScript:
                 return "grasp_slipped"
             skip = self.picks + (0 if self.relayed else self.variant)
             self.picks += 1
-            return plan_pick(env, self.arms, SPEEDUPS[int(self.relayed)], skip)
+            reserve = PLACE_RESERVE if spec.goal_destination >= 0 else 0
+            return plan_pick(env, self.arms, steps_left(env) - reserve, skip)
         if spec.goal_destination < 0:
             return None  # picked and held
         self.done = True  # after the place, nothing is left

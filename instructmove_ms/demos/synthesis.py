@@ -11,8 +11,9 @@ from dataclasses import dataclass
 from functools import partial
 
 from .pick import PICK_TASKS, STAGES, rollout
-from .place import PLACE_STAGES, SETTLE_STEPS, steps_left
+from .place import PLACE_STAGES, SETTLE_STEPS
 from .script import MotionScript
+from .timing import steps_left
 
 #: Failure reasons, counted per run: no IK solution for any grasp or place pose, no
 #: collision-free path, the object left the gripper, the object missed the receptacle.
