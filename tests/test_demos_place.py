@@ -226,14 +226,13 @@ def test_piperx_places_into_a_snug_receptacle_and_leaves_it_standing(index):
     assert np.all(np.abs(outcome["local"][:2]) <= outcome["half"]) and not outcome["grasped"]
 
 
-@pytest.mark.parametrize("index", [2, 22, 58])
+@pytest.mark.parametrize("index", [2, 22])
 def test_piperx_relay_episode_fits_the_horizon(index):
-    """Stored episodes 2, 22 and 58 need a relay (the picking arm has no release over the
+    """Stored episodes 2 and 22 need a relay (the picking arm has no release over the
     goal), and the pick, relay, second pick and place take more than the 500 steps at the
     default pace: the motions after the first pick hurry so that the target ends in the
-    receptacle in time. In 22 and 58 the egg rolls over once set down: the second arm's
-    grasp clears the turned egg's real top (22) and closes across it from straight above,
-    as on the egg lying as it first did, not along its rolled top approach (58)."""
+    receptacle in time. In 22 the egg rolls over once set down: the second arm's grasp
+    clears the turned egg's real top."""
     spec = heldout.load_set(TASK, "piperx", "seen")[index]
     env = make_env(TASK, robot_uids="piperx", control_mode="pd_joint_pos")
     env.reset(options={"episode": spec})

@@ -28,8 +28,6 @@ OFF_CENTRE_COST = 20.0
 #: fingers closing askew on a bar align it, and a turned hand can lean with level fingers.
 YAWS = np.deg2rad([30.0, -30.0])
 YAW_COST = 2.0  # cost (rad of joint motion) per radian of turn
-#: Top approaches at most this far off straight down (rad) also get an upright variant.
-LEVEL_WITHIN = np.deg2rad(60.0)
 FINGER_CLEARANCE = 0.015  # metres between each open finger and the object at the grasp
 
 
@@ -73,27 +71,10 @@ def box_top(pose: sapien.Pose, lo: np.ndarray, hi: np.ndarray) -> float:
     return float((corners @ pose.to_transformation_matrix()[:3, :3].T)[:, 2].max() + pose.p[2])
 
 
-def upright_variants(
-    approach: np.ndarray, closing: np.ndarray
-) -> list[tuple[np.ndarray, np.ndarray]]:
-    """(approach, closing axis) as given and, for a top approach tilted by more than a degree
-    and at most ``LEVEL_WITHIN`` off straight down (the object lies turned: an egg rolled
-    over), turned by the least rotation that points it straight down: the grasp as it is on
-    the object standing upright."""
-    down = np.array([0.0, 0.0, -1.0])
-    tilt = float(np.arccos(np.clip(approach @ down, -1.0, 1.0)))
-    if not np.deg2rad(1.0) < tilt <= LEVEL_WITHIN:
-        return [(approach, closing)]
-    axis = np.cross(approach, down)
-    axis /= np.linalg.norm(axis)
-    turn = sapien.Pose(q=[np.cos(tilt / 2), *(np.sin(tilt / 2) * axis)])
-    return [(approach, closing), (down, turn.to_transformation_matrix()[:3, :3] @ closing)]
-
-
 def grasp_frames(env, max_width: float) -> list[GraspFrame]:
     """The target's grasp affordances for fingers opening ``max_width``, each with both
     closing-axis signs, as given and turned by ``YAWS`` (the width across a turned bar
-    grows as 1 / cos), on an object lying turned also set upright (``upright_variants``)."""
+    grows as 1 / cos)."""
     u = env.unwrapped
     spec = u.episode
     inst = u.catalog[spec.objects[spec.target].uuid]
@@ -103,16 +84,16 @@ def grasp_frames(env, max_width: float) -> list[GraspFrame]:
     middle = (obj * sapien.Pose(0.5 * (lo + hi))).p
     whole = set(enveloping_grasps(inst, max_opening=max_width))
     frames = []
-    for grasp, yaw in product(grasp_affordances(inst, max_opening=max_width), (0.0, *YAWS)):
+    for grasp in grasp_affordances(inst, max_opening=max_width):
+        z = rot @ np.asarray(grasp.approach)
         center = (obj * sapien.Pose(grasp.center)).p
         offset = OFF_CENTRE_COST * float(np.linalg.norm((center - middle)[:2]))
-        width = grasp.width / np.cos(yaw)
-        if width > max_width:
-            continue
-        axes = upright_variants(rot @ np.asarray(grasp.approach), rot @ np.asarray(grasp.closing))
-        for z, closing in axes:
+        for yaw in (0.0, *YAWS):
+            width = grasp.width / np.cos(yaw)
+            if width > max_width:
+                continue
             turn = sapien.Pose(q=[np.cos(yaw / 2), *(np.sin(yaw / 2) * z)])
-            closing = turn.to_transformation_matrix()[:3, :3] @ closing
+            closing = turn.to_transformation_matrix()[:3, :3] @ rot @ np.asarray(grasp.closing)
             for sign in (1.0, -1.0):
                 y = sign * closing
                 matrix = np.eye(4)
