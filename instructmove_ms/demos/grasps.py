@@ -64,11 +64,16 @@ def target_box(env) -> tuple[sapien.Pose, np.ndarray, np.ndarray]:
     return u.agent.robot.pose.sp.inv() * u.objects[spec.target].pose.sp, lo, hi
 
 
+def box_corners(lo, hi) -> np.ndarray:
+    """The 8 corners (8, 3) of the box with lowest and highest corners ``lo`` and ``hi``."""
+    return np.array(list(product(*zip(lo, hi, strict=True))), dtype=float)
+
+
 def box_top(pose: sapien.Pose, lo: np.ndarray, hi: np.ndarray) -> float:
     """Height of the highest corner of the box ``lo``..``hi`` at ``pose`` (the object may lie
     turned: an egg rolled over after a relay)."""
-    corners = np.array(list(product(*zip(lo, hi, strict=True))), dtype=float)
-    return float((corners @ pose.to_transformation_matrix()[:3, :3].T)[:, 2].max() + pose.p[2])
+    rotation = pose.to_transformation_matrix()[:3, :3]
+    return float((box_corners(lo, hi) @ rotation.T)[:, 2].max() + pose.p[2])
 
 
 def grasp_frames(env, max_width: float) -> list[GraspFrame]:

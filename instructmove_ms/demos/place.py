@@ -26,7 +26,7 @@ from instructmove_ms.planning import (
     plan_joint_path,
 )
 
-from .grasps import across, lean_away
+from .grasps import across, box_corners, lean_away
 from .timing import Segment, fitted, hold, steps_left
 
 #: Per-step stage flags of a place rollout (PlaceA2B's ``info`` keys; success is place).
@@ -157,7 +157,7 @@ def releases(env, rig: Rig, world: CollisionWorld, interior: Interior) -> list[R
     u = env.unwrapped
     spec = u.episode
     lo, hi = u.catalog[spec.objects[spec.target].uuid].bounds
-    corners = np.array(np.meshgrid(*zip(lo, hi, strict=True))).reshape(3, -1).T
+    corners = box_corners(lo, hi)
     held = u.agent.robot.pose.sp.inv() * u.objects[spec.target].pose.sp
     grip_inv = held.inv() * rig.kin.fk(rig.start)  # the TCP in the object's frame
     heights = np.arange(CLEARANCE, interior.height + ABOVE_RIM, HEIGHT_STEP)
