@@ -13,6 +13,7 @@ from mani_skill.utils import sapien_utils
 from instructmove_ms.layout import Workspace
 
 from .cameras import DEFAULT_HEIGHT, DEFAULT_WIDTH, Intrinsics
+from .hardware import Gripper, JointLimits
 from .interface import InstructMoveAgent
 
 #: Rest pose of the reference setup: 7 arm joints, then both fingers open (0.04 m).
@@ -24,6 +25,9 @@ EXT1 = Intrinsics(fx=500.0, fy=500.0)
 EXT2 = Intrinsics(fx=531.9, fy=531.9)
 WRIST = Intrinsics(fx=666.7, fy=666.7)
 WRIST_EYE = (0.124, -0.0018, -0.049)
+#: Joint limits from the datasheet: velocity (rad/s) and acceleration (rad/s^2).
+VELOCITY = np.array([2.175, 2.175, 2.175, 2.175, 2.61, 2.61, 2.61])
+ACCELERATION = np.array([15.0, 7.5, 10.0, 12.5, 15.0, 20.0, 20.0])
 
 
 @register_agent()
@@ -45,6 +49,11 @@ class FrankaInstructMove(InstructMoveAgent, Panda):
     #: A top-down grasp stays well conditioned from 0.3 m in front of the base.
     workspace = Workspace(x=(0.3, 0.6), y=(-0.35, 0.35))
     keyframes = dict(rest=Keyframe(qpos=FRANKA_REST_QPOS.copy(), pose=sapien.Pose()))
+    #: ManiSkill's normalised Panda gripper: [-1, 1] spans finger targets -0.01..0.04 m; the
+    #: TCP's y axis is the fingers' axis.
+    gripper = Gripper(0.08, 20.0, -0.6, -1.0, sapien.Pose())
+    joint_limits = JointLimits(VELOCITY, ACCELERATION)
+    demo_pace = 0.3  # demos move calmly and the PD tracks them
 
     @property
     def tcp_links(self) -> list:

@@ -1,22 +1,45 @@
-"""What the shared task engine needs from a robot, whatever its number of arms."""
+"""What the shared task engine, the planners and the policies need from a robot, whatever
+its number of arms."""
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+from typing import ClassVar
+
 import numpy as np
 import torch
+from mani_skill.agents.controllers import PDEEPosController
 
 from instructmove_ms.layout import Workspace
+
+from .hardware import Gripper, JointLimits
+
+
+@dataclass(frozen=True)
+class ArmSlots:
+    """Where one arm's commands go in the robot's action vector: ``command`` holds the
+    slots of its joint targets (joint control modes, in ``arm_joint_names`` order) or of its
+    end-effector command (end-effector modes); ``gripper`` the slot of its gripper value."""
+
+    command: tuple[int, ...]
+    gripper: int
 
 
 class InstructMoveAgent:
     """Mixin for ManiSkill agents used by InstructMove tasks.
 
-    A subclass provides ``keyframes["rest"]``, ``arm_joint_names`` (every arm joint, all
-    arms), ``tcp_links`` (one TCP link per arm) and ``is_grasping(actor)`` (any arm).
+    A subclass provides ``keyframes["rest"]``, ``arm_joint_names`` (every arm joint, arm by
+    arm), ``tcp_links`` (one TCP link per arm), ``is_grasping(actor)`` (any arm), and
+    declares its hardware: ``gripper``, ``joint_limits`` (one arm's) and ``demo_pace`` (the
+    fraction of those limits planned demos move at). Its controllers keep one controller
+    per gripper, in arm order, besides the arm's.
     """
 
     #: Where objects may be placed: the reference workspace, narrowed to the robot's reach.
     workspace = Workspace()
+    gripper: ClassVar[Gripper]
+    joint_limits: ClassVar[JointLimits]
+    demo_pace: ClassVar[float]
 
     @property
     def tcp_links(self) -> list:
@@ -29,6 +52,32 @@ class InstructMoveAgent:
     def tcp_state(self) -> torch.Tensor:
         """TCP poses of every arm, flattened: (N, arms * 7)."""
         return torch.cat([link.pose.raw_pose for link in self.tcp_links], dim=-1)
+
+    def arm_joints(self, arm: int) -> list[str]:
+        """The joints of arm ``arm`` (0 for a single arm; the PiperX's 0 left, 1 right)."""
+        names = list(self.arm_joint_names)
+        per_arm = len(names) // len(self.tcp_links)
+        return names[arm * per_arm : (arm + 1) * per_arm]
+
+    def action_layout(self) -> tuple[ArmSlots, ...]:
+        """Per arm, where its commands go in the action of the current control mode."""
+        commands: list[list[int]] = [[] for _ in self.tcp_links]
+        grippers: list[int] = []
+        arms = [set(self.arm_joints(k)) for k in range(len(self.tcp_links))]
+        offset = 0
+        for controller in self.controller.controllers.values():
+            names = [j.name for j in controller.joints]
+            size = controller.single_action_space.shape[0]
+            owners = [k for k, joints in enumerate(arms) if joints & set(names)]
+            if not owners:
+                grippers.append(offset)
+            elif isinstance(controller, PDEEPosController):
+                commands[owners[0]] += range(offset, offset + size)
+            else:
+                for k in owners:
+                    commands[k] += [offset + names.index(n) for n in self.arm_joints(k)]
+            offset += size
+        return tuple(ArmSlots(tuple(c), g) for c, g in zip(commands, grippers, strict=True))
 
     def sample_init_qpos(self, rng: np.random.Generator, noise: float) -> np.ndarray:
         """The rest keyframe with Gaussian noise (std ``noise`` rad) on the arm joints,

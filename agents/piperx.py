@@ -1,7 +1,7 @@
 """AgileX PiperX arms: the dual-arm rig (robot uid ``piperx``) and one arm (``piperx_single``).
 
-Our own descriptions (``piperx/*.urdf``, written by ``piperx/generate.py`` from the published
-joint table, masses and gripper sizes).
+Our own descriptions (``descriptions/piperx/*.urdf``, written by its ``generate.py`` from
+the published joint table, masses and gripper sizes).
 """
 
 from __future__ import annotations
@@ -16,10 +16,12 @@ import sapien
 import torch
 from mani_skill.agents.base_agent import BaseAgent, Keyframe
 from mani_skill.agents.controllers import (
+    PDEEPosControllerConfig,
     PDEEPoseControllerConfig,
     PDJointPosControllerConfig,
     PDJointPosMimicController,
     PDJointPosMimicControllerConfig,
+    PDJointVelControllerConfig,
     deepcopy_dict,
 )
 from mani_skill.agents.registration import register_agent
@@ -29,9 +31,10 @@ from mani_skill.utils.structs.actor import Actor
 from mani_skill.utils.structs.link import Link
 
 from .cameras import DEFAULT_HEIGHT, DEFAULT_WIDTH, REFERENCE_HEIGHT, REFERENCE_WIDTH, Intrinsics
+from .hardware import Gripper, JointLimits
 from .interface import InstructMoveAgent
 
-URDF_DIR = Path(__file__).resolve().parent / "piperx"
+URDF_DIR = Path(__file__).resolve().parent / "descriptions" / "piperx"
 #: Initial arm joints j1..j6 of the reference setup; j1 turns each arm toward the middle.
 REST_ARM = (0.3197, 0.8987, -1.4058, 1.3924, 0.0308, 0.05)
 FINGER_OPEN = 0.05  # finger1 opening (m); the gripper action is twice this
@@ -46,6 +49,10 @@ STATIC_RPY = np.deg2rad([-145.0, 0.0, -90.0])
 #: tilted toward the gripper axis; the fingers are at the bottom of the image.
 HAND_EYE = (-0.00965, -0.0801, 0.0428)
 HAND_TILT = np.deg2rad(-20.0)
+#: Joint velocity limit of the vendor description (rad/s), every joint. No acceleration
+#: limit is published: ours is 5 times the velocity, within the Franka's ratios (3.4 to 7.7).
+VELOCITY = np.full(6, 5.0)
+ACCELERATION = np.full(6, 25.0)
 
 
 def _rot(axis: int, angle: float) -> np.ndarray:
@@ -153,6 +160,9 @@ class PiperX(InstructMoveAgent, BaseAgent):
       ManiSkill's replay converts between the two (both keep the arm under ``arm``).
     - ``pd_ee_delta_pose``: ``arm_left`` (6: TCP translation, rotation in [-1, 1] x 0.1 m /
       rad, rig frame), ``arm_right`` (6), ``gripper_left``, ``gripper_right``.
+    - as ManiSkill's Panda: ``pd_joint_target_delta_pos``, ``pd_joint_vel`` (``arm`` as
+      above), ``pd_ee_delta_pos`` (3 per arm), ``pd_ee_target_delta_pos``,
+      ``pd_ee_target_delta_pose`` and ``pd_ee_pose`` (absolute TCP pose per arm, rig frame).
 
     Cameras (published focal lengths at 1280x720, default 160x90): ``static_camera`` (D455
     above the rig looking at the workspace), ``left_hand_camera`` and ``right_hand_camera``
@@ -167,6 +177,12 @@ class PiperX(InstructMoveAgent, BaseAgent):
     urdf_config = _finger_materials(sides)
     keyframes = dict(rest=Keyframe(qpos=rest_qpos(sides), pose=sapien.Pose()))
 
+    #: The action value is the width itself; the fingers slide along link6's (and the
+    #: TCP's) x axis.
+    gripper = Gripper(0.1, 1.0, 0.0, 0.0, sapien.Pose(q=[np.sqrt(0.5), 0.0, 0.0, np.sqrt(0.5)]))
+    joint_limits = JointLimits(VELOCITY, ACCELERATION)
+    demo_pace = 0.15  # about the Franka demos' joint speeds
+
     arm_stiffness, arm_damping, arm_force_limit = 2e3, 3e2, 100.0
     gripper_stiffness, gripper_damping, gripper_force_limit = 2e3, 1e2, 100.0
 
@@ -177,8 +193,27 @@ class PiperX(InstructMoveAgent, BaseAgent):
     def _arm_joints(self, side: str) -> list[str]:
         return [f"{_prefix(side)}joint{j}" for j in range(1, 7)]
 
+    def _end_effectors(self, config: type, **kwargs) -> dict:
+        """One end-effector controller ``config`` per arm, keyed ``arm_<side>`` (``arm``
+        for a single arm)."""
+        return {
+            f"arm{_suffix(s)}": config(
+                joint_names=self._arm_joints(s),
+                ee_link=f"{_prefix(s)}tcp",
+                urdf_path=self.urdf_path,
+                stiffness=self.arm_stiffness,
+                damping=self.arm_damping,
+                force_limit=self.arm_force_limit,
+                **kwargs,
+            )
+            for s in self.sides
+        }
+
     @property
     def _controller_configs(self) -> dict:
+        """ManiSkill's Panda modes that make sense for parallel-finger arms (no velocity
+        variants of joint position control): joint modes drive every arm joint under ``arm``,
+        end-effector modes one controller per arm."""
         drive = dict(
             stiffness=self.arm_stiffness, damping=self.arm_damping, force_limit=self.arm_force_limit
         )
@@ -188,19 +223,15 @@ class PiperX(InstructMoveAgent, BaseAgent):
         joint_delta = PDJointPosControllerConfig(
             self.arm_joint_names, -0.1, 0.1, use_delta=True, **drive
         )
-        ee = {
-            f"arm{_suffix(s)}": PDEEPoseControllerConfig(
-                joint_names=self._arm_joints(s),
-                pos_lower=-0.1,
-                pos_upper=0.1,
-                rot_lower=-0.1,
-                rot_upper=0.1,
-                ee_link=f"{_prefix(s)}tcp",
-                urdf_path=self.urdf_path,
-                **drive,
-            )
-            for s in self.sides
-        }
+        joint_target_delta = PDJointPosControllerConfig(
+            self.arm_joint_names, -0.1, 0.1, use_delta=True, use_target=True, **drive
+        )
+        joint_vel = PDJointVelControllerConfig(
+            self.arm_joint_names, -1.0, 1.0, self.arm_damping, self.arm_force_limit
+        )
+        delta = dict(pos_lower=-0.1, pos_upper=0.1)
+        rotation = dict(rot_lower=-0.1, rot_upper=0.1)
+        absolute = dict(pos_lower=-2.0, pos_upper=2.0, use_delta=False, normalize_action=False)
         grippers = {
             f"gripper{_suffix(s)}": GripperWidthControllerConfig(
                 [f"{_prefix(s)}finger_joint1", f"{_prefix(s)}finger_joint2"],
@@ -219,13 +250,19 @@ class PiperX(InstructMoveAgent, BaseAgent):
             )
             for s in self.sides
         }
-        return deepcopy_dict(
-            dict(
-                pd_joint_pos=dict(arm=joint_pos, **grippers),
-                pd_joint_delta_pos=dict(arm=joint_delta, **grippers),
-                pd_ee_delta_pose=dict(**ee, **grippers),
-            )
+        pos, pose = PDEEPosControllerConfig, PDEEPoseControllerConfig
+        modes = dict(
+            pd_joint_pos=dict(arm=joint_pos),
+            pd_joint_delta_pos=dict(arm=joint_delta),
+            pd_joint_target_delta_pos=dict(arm=joint_target_delta),
+            pd_joint_vel=dict(arm=joint_vel),
+            pd_ee_delta_pos=self._end_effectors(pos, **delta),
+            pd_ee_target_delta_pos=self._end_effectors(pos, **delta, use_target=True),
+            pd_ee_delta_pose=self._end_effectors(pose, **delta, **rotation),
+            pd_ee_target_delta_pose=self._end_effectors(pose, **delta, **rotation, use_target=True),
+            pd_ee_pose=self._end_effectors(pose, **absolute),
         )
+        return deepcopy_dict({mode: {**arms, **grippers} for mode, arms in modes.items()})
 
     def _after_init(self) -> None:
         links = self.robot.links_map

@@ -27,6 +27,7 @@ from pathlib import Path
 import numpy as np
 import trimesh
 
+from ..files import atomic_path, write_json
 from .catalog import Instance, taxonomy
 from .generators import GENERATORS
 from .parts import Part, Region
@@ -81,9 +82,8 @@ def _check_entry(entry: dict, index: int) -> None:
 
 
 def _write_obj(path: Path, mesh: trimesh.Trimesh) -> None:
-    tmp = path.with_suffix(".tmp")
-    mesh.export(tmp, file_type="obj")
-    os.replace(tmp, path)
+    with atomic_path(path) as tmp:
+        mesh.export(tmp, file_type="obj")
 
 
 def decompose(mesh: trimesh.Trimesh, digest: str, threshold: float) -> tuple[list[Piece], Path]:
@@ -114,9 +114,7 @@ def decompose(mesh: trimesh.Trimesh, digest: str, threshold: float) -> tuple[lis
         visual = mesh.copy()
         visual.apply_translation(-visual.bounds.mean(axis=0))
         _write_obj(folder / "visual.obj", visual)
-        tmp = index.with_suffix(".tmp")
-        tmp.write_text(json.dumps(centres))
-        os.replace(tmp, index)  # written last: marks a complete cache entry
+        write_json(index, centres, indent=None)  # written last: marks a complete cache entry
     centres = json.loads(index.read_text())
     pieces = [Piece(folder / f"piece_{k:03d}.obj", tuple(c)) for k, c in enumerate(centres)]
     return pieces, folder / "visual.obj"

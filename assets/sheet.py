@@ -8,6 +8,7 @@ from pathlib import Path
 import cv2
 import numpy as np
 
+from ..files import atomic_path
 from .catalog import Instance
 from .sim import look_at, spawn, table_scene
 
@@ -63,8 +64,6 @@ def contact_sheet(instances: list[Instance], path: Path, columns: int = 10) -> P
         for start in range(0, len(row), columns):
             chunk = row[start : start + columns]
             grid.append(np.concatenate(chunk + [blank] * (columns - len(chunk)), axis=1))
-    path.parent.mkdir(parents=True, exist_ok=True)
-    tmp = path.with_suffix(".tmp.png")
-    cv2.imwrite(str(tmp), np.concatenate(grid, axis=0))
-    tmp.replace(path)
+    with atomic_path(path) as tmp:
+        cv2.imwrite(str(tmp), np.concatenate(grid, axis=0))
     return path

@@ -10,13 +10,12 @@ from __future__ import annotations
 
 import hashlib
 import json
-import os
-import tempfile
 from dataclasses import asdict
 from functools import cache
 from importlib import resources
 from pathlib import Path
 
+from ..files import write_json, write_text
 from .catalog import Catalog, Instance, generate_instance
 from .generators import GENERATORS
 from .importer import data_home
@@ -61,14 +60,8 @@ def build_entries(categories: list[str], per_category: int) -> list[dict]:
 
 def write_snapshot(path: Path, name: str, entries: list[dict]) -> Path:
     """Write atomically (temporary file in the same folder, then rename)."""
-    path.parent.mkdir(parents=True, exist_ok=True)
     text = json.dumps({"name": name, "instances": entries}, indent=1, sort_keys=True) + "\n"
-    fd, tmp = tempfile.mkstemp(dir=path.parent, suffix=".tmp")
-    with os.fdopen(fd, "w") as f:
-        f.write(text)
-    os.chmod(tmp, 0o644)
-    os.replace(tmp, path)
-    return path
+    return write_text(path, text)
 
 
 def package_snapshot_dir() -> Path:
@@ -175,11 +168,7 @@ def import_folder(
         else:
             rejected.append((entry["id"], result.failures))
     for inst in kept:
-        record = imported_record_path(inst.uuid)
-        record.parent.mkdir(parents=True, exist_ok=True)
-        tmp = record.with_suffix(".tmp")
-        tmp.write_text(json.dumps(inst.to_record()))
-        os.replace(tmp, record)
+        write_json(imported_record_path(inst.uuid), inst.to_record(), indent=None)
     snapshot = [entry_of(i) for i in base + kept]
     path = write_snapshot(user_snapshot_dir() / f"{name}.json", name, snapshot)
     load_snapshot.cache_clear()

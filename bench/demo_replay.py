@@ -18,7 +18,7 @@ import tempfile
 import time
 from pathlib import Path
 
-from instructmove_ms.demos.convert import convert
+from instructmove_ms.demos.ee_control import convert
 from instructmove_ms.demos.generate import generate
 from instructmove_ms.tasks import TASKS
 

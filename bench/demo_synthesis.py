@@ -20,7 +20,7 @@ import gymnasium as gym
 
 import instructmove_ms  # noqa: F401
 from instructmove_ms.demos.generate import generate
-from instructmove_ms.demos.synthesis import FAILURES, synthesize_scene, synthesizer
+from instructmove_ms.demos.synthesis import FAILURES, synthesize_scene
 from instructmove_ms.tasks import TASKS
 
 
@@ -47,10 +47,10 @@ def synthesis(task: str, robot: str, seeds: int) -> tuple[Counter, float, float]
             render_backend="cpu",
         )
     )
-    synthesize, outcomes, recorded = synthesizer(task), Counter(), []
+    outcomes, recorded = Counter(), []
     start = time.perf_counter()
     for seed in range(seeds):
-        scene = synthesize_scene(env, seed, synthesize)
+        scene = synthesize_scene(env, seed)
         outcomes[scene.failure or "kept"] += 1
         outcomes["rollouts"] += scene.rollouts
         recorded.append((seed, env.actions))

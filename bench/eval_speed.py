@@ -18,7 +18,7 @@ import gymnasium as gym
 
 import instructmove_ms  # noqa: F401
 from instructmove_ms.evaluation import evaluate
-from instructmove_ms.policies import OraclePolicy, RandomPolicy
+from instructmove_ms.policies import RandomPolicy, ScriptedOraclePolicy
 
 TASK = "PickCategory-InstructMove"
 
@@ -49,7 +49,7 @@ def main() -> None:
     horizon = 300
     for obs_mode in ("state", "rgb"):
         base = baseline_per_hour(obs_mode, args.episodes, horizon)
-        for name, policy in (("random", RandomPolicy(0)), ("oracle", OraclePolicy(0))):
+        for name, policy in (("random", RandomPolicy(0)), ("oracle", ScriptedOraclePolicy(0))):
             ours = ours_per_hour(policy, obs_mode, args.episodes)
             print(
                 f"{obs_mode:5s} obs, {name:6s}: {ours:7.0f} episodes/h; PickCube-v1 with "

@@ -158,13 +158,14 @@ def _cmd_episodes_write(args: argparse.Namespace) -> int:
 
     import instructmove_ms  # noqa: F401  (registration)
     from instructmove_ms import heldout
+    from instructmove_ms.splits import EVAL_SPLITS
     from instructmove_ms.tasks import TASKS
 
     tasks = [args.task] if args.task else list(TASKS)
     out = Path(args.out) if args.out else None
     for env_id in tasks:
         for robot in [args.robot] if args.robot else TASKS[env_id].supported_robots:
-            for split in heldout.EVAL_SPLITS:
+            for split in EVAL_SPLITS:
                 env = gym.make(
                     env_id, robot_uids=robot, split=split, obs_mode="state", render_backend="none"
                 )
@@ -223,7 +224,7 @@ def _cmd_demos_generate(args: argparse.Namespace) -> int:
 
 def _cmd_demos_convert(args: argparse.Namespace) -> int:
     import instructmove_ms  # noqa: F401  (registration)
-    from instructmove_ms.demos.convert import convert
+    from instructmove_ms.demos.ee_control import convert
 
     report = convert(args.traj, args.control_mode, args.obs_mode, args.out, args.count)
     print(f"{report.kept}/{report.total} episodes converted successfully -> {report.path}")

@@ -1,10 +1,10 @@
 """The shared episode engine: a TaskSpec, a snapshot, a split and a seed make an episode.
 
-One function serves every family. The task's ``cue`` says how the instruction singles out
-the goal (category, attribute, spatial relation, or object plus destination); roles and
-their constraints come from the TaskSpec; the layout honours clearance and relations; the
-verifier checks text-indispensability on every episode; conditions re-render the
-instruction of the same scene.
+One function serves every family. The family's ``cue`` (see ``family.Cue``) says how the
+instruction singles out the goal: which extra constraints the roles get, how the layout is
+arranged, how the goal is phrased and which cue names another candidate; roles and their
+constraints come from the TaskSpec; the layout honours clearance and the cue's predicate;
+conditions re-render the instruction of the same scene.
 """
 
 from __future__ import annotations
@@ -18,10 +18,10 @@ import numpy as np
 
 from .assets.catalog import Catalog, Instance
 from .episode import CONDITIONS, EpisodeSpec, ObjectSpec
-from .language import attribute_word, noun, preposition, referring_expression, render
-from .layout import Placement, Workspace, sample_layout
-from .relations import OPPOSITE, PHRASES, holds
-from .sampler import EACH_OTHER, Constraint, RoleError, RoleSpec, names_clash, resolve_roles
+from .family import Members, TaskSpec
+from .language import noun, preposition, referring_expression, render
+from .layout import Workspace, sample_layout
+from .sampler import RoleError, RoleSpec, names_clash, resolve_roles
 from .validation import check_choice
 
 SPAWN_LIFT = 0.002  # objects spawn this far above the table and settle
@@ -38,81 +38,30 @@ class CompositionError(RuntimeError):
 class Cast:
     """Resolved roles (in scene order) and the cue that singles out the target."""
 
-    members: list[tuple[Instance, str]]
+    members: Members
     cue: dict
 
 
-def _with_constraint(roles: tuple[RoleSpec, ...], role: str, *extra: Constraint):
-    return tuple(
-        dataclasses.replace(r, constraints=r.constraints + extra) if r.name == role else r
-        for r in roles
-    )
-
-
 def _cast(
-    task, roles, catalog: Catalog, split: str, seed: int, attempt: int, rng: np.random.Generator
+    task: TaskSpec,
+    roles: tuple[RoleSpec, ...],
+    catalog: Catalog,
+    split: str,
+    seed: int,
+    attempt: int,
+    rng: np.random.Generator,
 ) -> Cast:
-    key = f"{seed}:{attempt}"
-    if task.cue == "attribute":
-        attribute = task.attributes[int(rng.integers(len(task.attributes)))]
-        if attribute == "size":
-            direction = ("smaller", "larger")[int(rng.integers(2))]
-            extra = (Constraint("extent", direction, "target"),)
-            cue = {
-                "attribute": "size",
-                "direction": "larger" if direction == "smaller" else "smaller",
-            }
-        else:
-            extra = (Constraint(attribute, "differ", "target"),)
-            cue = {"attribute": attribute}
-        # colours pairwise distinct: any candidate can be named for alternative_target
-        extra += (
-            Constraint("color", "differ", "target"),
-            Constraint("color", "differ", EACH_OTHER),
-        )
-        roles = _with_constraint(roles, "distractor", *extra)
-    elif task.cue == "spatial":
-        cue = {"relation": task.relations[int(rng.integers(len(task.relations)))]}
-    else:
-        cue = {"kind": task.cue}
-    assigned = resolve_roles(roles, catalog, split, key)
-    members = [(inst, role) for role, group in assigned.items() for inst in group]
-    if task.cue == "attribute" and cue["attribute"] != "size":
-        target = assigned["target"][0]
-        if attribute_word(target, cue["attribute"]) is None:
-            raise RoleError(f"{target.category} has no word for its {cue['attribute']}")
-    return Cast(members, cue)
+    cue, roles = task.cue.draw(rng, roles)
+    assigned = resolve_roles(roles, catalog, split, f"{seed}:{attempt}")
+    task.cue.admits(cue, assigned)
+    return Cast([(inst, role) for role, group in assigned.items() for inst in group], cue)
 
 
-def _spatial_accept(order: list[int], relation: str) -> Callable:
-    """Layout predicate: target where ``relation`` holds, distractor where its opposite does."""
-    ref, target, distractor = order[:3]
-
-    def accept(i: int, p: Placement, placed: dict[int, Placement]) -> bool:
-        if i == target:
-            return holds(relation, (p.x, p.y), (placed[ref].x, placed[ref].y))
-        if i == distractor:
-            return holds(OPPOSITE[relation], (p.x, p.y), (placed[ref].x, placed[ref].y))
-        return True
-
-    return accept
-
-
-def _instruction(task, rng, cast: Cast, members, goal: int, dest: int, split: str) -> str:
-    """Render the instruction that singles out ``goal`` (and ``dest``) under the cast's cue."""
-    inst = members[goal][0]
-    cue = cast.cue
-    if "attribute" in cue:
-        word = attribute_word(inst, cue["attribute"], cue.get("direction", ""))
-        phrase = f"{word} {noun(rng, inst)}"
-    elif "relation" in cue:
-        ref = members[cue["reference"]][0]
-        options = PHRASES[cue["relation"]]
-        relation = options[int(rng.integers(len(options)))]
-        phrase = f"{noun(rng, inst)} {relation} the {noun(rng, ref)}"
-    else:
-        phrase = referring_expression(rng, inst, split)
-    slots = {"target": phrase}
+def _instruction(
+    task: TaskSpec, rng, cue: dict, members: Members, goal: int, dest: int, split: str
+) -> str:
+    """Render the instruction that singles out ``goal`` (and ``dest``) under ``cue``."""
+    slots = {"target": task.cue.phrase(rng, cue, members, goal, split)}
     if dest >= 0:
         receptacle = members[dest][0]
         slots.update(
@@ -135,26 +84,14 @@ def _absent_instance(rng, catalog: Catalog, members) -> Instance:
     return options[int(rng.integers(len(options)))]
 
 
-def _alternative_cue(cast: Cast, members, candidates, goal: int) -> Cast:
-    """A cue that singles out ``goal``: the opposite relation, or the same attribute when the
-    goal's value is unique among the candidates, else its colour (pairwise distinct)."""
-    cue = cast.cue
-    if "relation" in cue:
-        return Cast(cast.members, {**cue, "relation": OPPOSITE[cue["relation"]]})
-    if "attribute" not in cue:
-        return cast
-    inst = members[goal][0]
-    others = [members[k][0] for k in candidates if k != goal]
-    attribute = cue["attribute"]
-    if attribute in ("material", "shape"):
-        unique = all(getattr(o, attribute) != getattr(inst, attribute) for o in others)
-        if unique and attribute_word(inst, attribute):
-            return cast
-    return Cast(cast.members, {"attribute": "color"})
-
-
 def _condition(
-    task, spec: EpisodeSpec, cast: Cast, members, rng, catalog, split, condition: str
+    task: TaskSpec,
+    spec: EpisodeSpec,
+    members: Members,
+    rng: np.random.Generator,
+    catalog: Catalog,
+    split: str,
+    condition: str,
 ) -> EpisodeSpec:
     """The same scene under ``condition``: only the instruction and the goal change."""
     if condition == "normal":
@@ -167,15 +104,10 @@ def _condition(
             if (o, d) != (spec.target, spec.goal_destination)
         ]
         goal, dest = goals[int(rng.integers(len(goals)))]
-        cue = _alternative_cue(cast, members, spec.candidates, goal)
+        cue = task.cue.alternative(spec.cue, members, spec.candidates, goal)
         text = _instruction(task, rng, cue, members, goal, dest, split)
         return dataclasses.replace(
-            spec,
-            instruction=text,
-            target=goal,
-            goal_destination=dest,
-            cue=cue.cue,
-            condition=condition,
+            spec, instruction=text, target=goal, goal_destination=dest, cue=cue, condition=condition
         )
     cue: dict = {}
     if condition == "empty":
@@ -196,7 +128,7 @@ def _condition(
 
 
 def compose(
-    task,
+    task: TaskSpec,
     roles: tuple[RoleSpec, ...],
     catalog: Catalog,
     split: str,
@@ -225,12 +157,7 @@ def compose(
         for inst, _ in members:
             lo, hi = inst.bounds
             halves.append((float(hi[0] - lo[0]) / 2, float(hi[1] - lo[1]) / 2))
-        order, accept = None, None
-        if task.cue == "spatial":
-            first = [index["reference"][0], index["target"][0], index["distractor"][0]]
-            order = first + [k for k in range(len(members)) if k not in first]
-            accept = _spatial_accept(order, cast.cue["relation"])
-            cast = Cast(cast.members, {**cast.cue, "reference": first[0]})
+        order, accept, cue = task.cue.arrange(cast.cue, index, len(members))
         try:
             places = sample_layout(
                 rng,
@@ -264,16 +191,16 @@ def compose(
             snapshot=catalog.name,
             split=split,
             seed=int(seed),
-            instruction=_instruction(task, rng, cast, members, target, dest, split),
+            instruction=_instruction(task, rng, cue, members, target, dest, split),
             objects=objects,
             target=target,
             candidates=candidates,
             robot_qpos=tuple(float(q) for q in qpos),
             destinations=destinations,
             goal_destination=dest,
-            cue=cast.cue,
+            cue=cue,
         )
-        return _condition(task, spec, cast, members, rng, catalog, split, condition)
+        return _condition(task, spec, members, rng, catalog, split, condition)
     raise CompositionError(
         f"{task.family}: no episode for seed {seed} in split {split!r} after {MAX_ATTEMPTS} "
         f"attempts; last reasons: {failures[-3:]}"

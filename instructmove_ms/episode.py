@@ -15,6 +15,11 @@ CONDITIONS = ("normal", "alternative_target", "generic", "empty", "absent_object
 SPEC_VERSION = 1
 
 
+def actor_name(k: int) -> str:
+    """The name of the scene actor of ``objects[k]`` (the env builds it, planners find it)."""
+    return f"object_{k}"
+
+
 @dataclass(frozen=True)
 class ObjectSpec:
     """One object of the scene: which catalog instance, where, and its role."""

@@ -32,7 +32,7 @@ import torch
 from tqdm import tqdm
 
 from . import heldout
-from .guard import PolicyError, check_action, failed_result, guarded
+from .guard import PolicyError, check_action, guarded
 from .heldout import ConfigEpisode, EvaluatorConfig
 from .metrics import EpisodeResult, score_episode
 from .reports import write_reports
@@ -142,9 +142,9 @@ class _Runner:
         rows = []
         for episode, last, film in zip(batch, latched, frames, strict=True):
             if last is None:
-                result, failed = failed_result(episode.spec), error
+                result, failed = EpisodeResult.failed(episode.spec, u.task.stages), error
             else:
-                result, failed = score_episode(episode.spec, last, u.catalog), None
+                result, failed = score_episode(episode.spec, last, u.task.stages, u.catalog), None
             rows.append({"episode_id": episode.episode_id, **result.to_dict(), "error": failed})
             if film:
                 self._write_video(episode, film, result, failed)

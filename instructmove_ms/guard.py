@@ -2,8 +2,9 @@
 
 A policy that raises, or returns an action of the wrong shape or with NaN/inf, ends its
 episode with a :class:`PolicyError`. The evaluator records the message and scores the
-episode as failed (every stage false, no grounding or control error): it stays in every
-rate's denominator, so a policy cannot raise its rates by crashing on hard episodes.
+episode as failed (``EpisodeResult.failed``: every stage false, no grounding or control
+error): it stays in every rate's denominator, so a policy cannot raise its rates by
+crashing on hard episodes.
 """
 
 from __future__ import annotations
@@ -13,9 +14,6 @@ from typing import Any
 
 import numpy as np
 import torch
-
-from .episode import EpisodeSpec
-from .metrics import PICK_STAGES, PLACE_STAGES, EpisodeResult
 
 
 class PolicyError(Exception):
@@ -47,18 +45,3 @@ def check_action(action: Any, dim: int, num_envs: int) -> torch.Tensor | np.ndar
     if not finite(action).all():
         raise PolicyError("act() returned NaN or inf")
     return action
-
-
-def failed_result(spec: EpisodeSpec) -> EpisodeResult:
-    """The score of an episode the policy failed: nothing achieved."""
-    stages = PLACE_STAGES if spec.family == "place_a2b" else PICK_STAGES
-    return EpisodeResult.of(
-        spec,
-        stages=dict.fromkeys(stages, False),
-        success=False,
-        stage_score=0.0,
-        any_reach=False,
-        any_lift=False,
-        grounding_error=False,
-        control_error=False,
-    )

@@ -1,8 +1,8 @@
 """Held-out evaluation sets: fixed episode specs per family, robot and split.
 
-Evaluation seeds start at ``EVAL_SEED_BASE`` (one block of a million per split); training
-data and demos use seeds below it, so the two never share an episode. The sets ship with
-the package under ``tasks/episodes/<env id>/<robot>/<split>.jsonl``.
+Evaluation seeds come from ``splits.eval_seed`` (training data and demos use seeds below
+``splits.EVAL_SEED_BASE``, so the two never share an episode). The sets ship with the
+package under ``tasks/episodes/<env id>/<robot>/<split>.jsonl``.
 
 A set also exports as a config of ManiSkill's evaluator convention: ``env_info`` (``env_id``,
 ``max_episode_steps``, ``env_kwargs``) and ``episodes`` of ``{episode_id, reset_kwargs}``,
@@ -13,24 +13,18 @@ episode exactly (see ``InstructMoveEnv.reset``).
 from __future__ import annotations
 
 import json
-import os
-import tempfile
 from collections.abc import Iterator
 from dataclasses import dataclass
 from importlib import resources
 from pathlib import Path
 
 from .episode import CONDITIONS, EpisodeSpec
+from .files import write_json, write_text
+from .splits import EVAL_SPLITS, eval_seed
 from .tasks import TASKS
 from .validation import check_choice
 
-EVAL_SEED_BASE = 1_000_000_000
-EVAL_SPLITS = ("seen", "unseen_instance", "unseen_category")
 EPISODES_PER_SET = 100
-
-
-def eval_seed(split: str, index: int) -> int:
-    return EVAL_SEED_BASE + EVAL_SPLITS.index(split) * 1_000_000 + index
 
 
 def default_folder() -> Path:
@@ -43,13 +37,7 @@ def set_path(env_id: str, robot: str, split: str, folder: Path | None = None) ->
 
 def write_set(path: Path, specs: list[EpisodeSpec]) -> Path:
     """Write ``specs`` as JSON lines, atomically."""
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(dir=path.parent, suffix=".tmp")
-    with os.fdopen(fd, "w") as f:
-        f.writelines(spec.to_json() + "\n" for spec in specs)
-    os.chmod(tmp, 0o644)
-    os.replace(tmp, path)
-    return path
+    return write_text(path, "".join(spec.to_json() + "\n" for spec in specs))
 
 
 def load_set(env_id: str, robot: str, split: str, folder: Path | None = None) -> list[EpisodeSpec]:
@@ -133,11 +121,7 @@ class EvaluatorConfig:
 
     def write(self, path: Path) -> Path:
         """Write the config as JSON, atomically."""
-        path.parent.mkdir(parents=True, exist_ok=True)
-        tmp = path.with_suffix(path.suffix + ".tmp")
-        tmp.write_text(json.dumps(self.to_dict(), indent=2))
-        os.replace(tmp, path)
-        return path
+        return write_json(path, self.to_dict(), indent=2)
 
     @classmethod
     def load(cls, path: Path) -> EvaluatorConfig:

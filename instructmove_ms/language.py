@@ -6,8 +6,7 @@ import numpy as np
 
 from .assets.catalog import Instance
 from .assets.expressions import MATERIAL_ADJECTIVE, SHAPE_ADJECTIVE, expressions
-
-UNSEEN_SPLITS = ("unseen_instance", "unseen_category")
+from .splits import UNSEEN_SPLITS
 
 
 def referring_expression(rng: np.random.Generator, instance: Instance, split: str) -> str:
@@ -37,6 +36,11 @@ def attribute_word(instance: Instance, attribute: str, direction: str = "") -> s
     if attribute == "shape":
         return SHAPE_ADJECTIVE.get(instance.shape)
     return {"larger": "biggest", "smaller": "smallest"}[direction]
+
+
+def names(instance: Instance, text: str) -> bool:
+    """Whether ``text`` names ``instance`` by one of its nouns (as whole words)."""
+    return any(f" {n} " in f" {text} " for n in instance.nouns)
 
 
 def preposition(receptacle: Instance) -> str:

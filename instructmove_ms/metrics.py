@@ -1,8 +1,9 @@
 """Episode scores and aggregates: stage metrics, grounding vs control errors, intervals.
 
 Stage flags are latched in the env, so the last step's info of an episode holds its
-result. Aggregates report rates with Wilson 95% intervals and the paper's table format
-``Reach/Lift (S)`` (pick) or ``ReachPick/LiftPick/ReachPlace/Place (S)`` (pick-and-place).
+result; the family's ``StageSchema`` says which flags are its stages. Aggregates report
+rates with Wilson 95% intervals and the paper's table format, the family's stages then the
+score: ``Reach/Lift (S)`` (pick) or ``ReachPick/LiftPick/ReachPlace/Place (S)``.
 """
 
 from __future__ import annotations
@@ -13,9 +14,8 @@ from dataclasses import asdict, dataclass, field
 
 from .assets.catalog import Catalog
 from .episode import EpisodeSpec
+from .family import StageSchema
 
-PICK_STAGES = ("reach", "lift")
-PLACE_STAGES = ("reach_pick", "lift_pick", "reach_place", "place")
 SHARED_ATTRIBUTES = ("category", "color", "shape", "material", "size")
 
 
@@ -37,6 +37,20 @@ class EpisodeResult:
     grounding_error: bool  # a distractor was reached or lifted first
     control_error: bool  # the right object was reached, the task not completed
     shared: tuple[str, ...] = field(default=())  # attributes a wrong choice shares with target
+
+    @classmethod
+    def failed(cls, spec: EpisodeSpec, stages: StageSchema) -> EpisodeResult:
+        """The score of an episode the policy failed: nothing achieved."""
+        return cls.of(
+            spec,
+            stages=dict.fromkeys(stages.names, False),
+            success=False,
+            stage_score=0.0,
+            any_reach=False,
+            any_lift=False,
+            grounding_error=False,
+            control_error=False,
+        )
 
     @classmethod
     def of(cls, spec: EpisodeSpec, **scores) -> EpisodeResult:
@@ -71,19 +85,20 @@ def shared_attributes(catalog: Catalog, spec: EpisodeSpec, wrong: int) -> tuple[
     return tuple(k for k in SHARED_ATTRIBUTES if k in shared)
 
 
-def score_episode(spec: EpisodeSpec, info: dict, catalog: Catalog) -> EpisodeResult:
-    """Score an episode from the per-step info of its last step."""
-    place = spec.family == "place_a2b"
-    stages = {k: bool(_value(info, k)) for k in (PLACE_STAGES if place else PICK_STAGES)}
+def score_episode(
+    spec: EpisodeSpec, info: dict, stages: StageSchema, catalog: Catalog
+) -> EpisodeResult:
+    """Score an episode of a family with ``stages`` from the info of its last step."""
+    flags = {k: bool(_value(info, k)) for k in stages.names}
     first = [int(_value(info, k)) for k in ("reached_object", "lifted_object")]
     wrong = next((k for k in first if k >= 0 and k != spec.target), -1)
     has_target = spec.target >= 0
     grounding = has_target and wrong >= 0
-    reached = stages["reach_pick" if place else "reach"]
+    reached = flags[stages.reached]
     success = bool(_value(info, "success"))
     return EpisodeResult.of(
         spec,
-        stages=stages,
+        stages=flags,
         success=success,
         stage_score=float(_value(info, "stage_score")),
         any_reach=bool(_value(info, "any_reach")),
@@ -109,15 +124,16 @@ def aggregate(
     results: Iterable[EpisodeResult],
     keys: tuple[str, ...] = ("family", "robot", "split", "condition"),
 ) -> list[dict]:
-    """Rates with Wilson intervals per group of ``keys``."""
+    """Rates with Wilson intervals per group of ``keys`` (a group holds one family's
+    episodes; ``stages`` lists its stage names, each with its rate)."""
     groups: dict[tuple, list[EpisodeResult]] = {}
     for r in results:
         groups.setdefault(tuple(getattr(r, k) for k in keys), []).append(r)
     rows = []
     for key, group in sorted(groups.items()):
         n = len(group)
-        row = dict(zip(keys, key, strict=True), episodes=n)
-        rates = {s: sum(r.stages[s] for r in group) for s in group[0].stages}
+        row = dict(zip(keys, key, strict=True), episodes=n, stages=list(group[0].stages))
+        rates = {s: sum(r.stages[s] for r in group) for s in row["stages"]}
         rates.update(
             success=sum(r.success for r in group),
             any_reach=sum(r.any_reach for r in group),
@@ -135,9 +151,8 @@ def aggregate(
 
 
 def paper_cell(row: dict) -> str:
-    """``Reach/Lift (S)`` or ``ReachPick/LiftPick/ReachPlace/Place (S)``."""
-    stages = PLACE_STAGES if "place" in row else PICK_STAGES
-    return "/".join(f"{row[s]:.2f}" for s in stages) + f" ({row['stage_score']:.2f})"
+    """The group's stage rates and score: ``Reach/Lift (S)`` for a pick family."""
+    return "/".join(f"{row[s]:.2f}" for s in row["stages"]) + f" ({row['stage_score']:.2f})"
 
 
 def markdown_table(

@@ -10,14 +10,14 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-from .metrics import PICK_STAGES, PLACE_STAGES, SHARED_ATTRIBUTES  # noqa: E402
+from .metrics import SHARED_ATTRIBUTES  # noqa: E402
 
 
 def stage_funnel(rows: list[dict], path: Path) -> Path:
     """Bar chart of each stage's rate (with its 95% interval) per aggregate row."""
     fig, ax = plt.subplots(figsize=(7, 3.5))
     for k, row in enumerate(rows):
-        stages = PLACE_STAGES if "place" in row else PICK_STAGES
+        stages = row["stages"]
         rates = [row[s] for s in stages]
         errors = [  # clamped: rounding can put a rate a hair outside its interval
             [max(0.0, row[s] - row[f"{s}_ci"][0]) for s in stages],

@@ -2,33 +2,45 @@
 
 A policy is a class with ``get_obs_mode()``, ``get_control_mode()``, ``reset(obs)`` and
 ``act(obs)``. Privileged reference policies also get ``bind(env)``, which the evaluator
-calls before each episode, to read the scene (a learned policy never does).
+calls before each episode; they read the episode through a ``PlanningScene`` built for the
+object (and receptacle) they go for (a learned policy never does).
 
-- ``PlannerOraclePolicy`` (``oracle``): plays the demo generator's collision-free planned
-  pick (and place) of the instruction's target (privileged): the upper bound.
-- ``OraclePolicy`` (``scripted``): a scripted top-down servo to the instruction's target
-  (privileged) that grasps and lifts it; for PlaceA2B it then carries it over the goal
-  receptacle and opens.
-- ``PlannerBlindPolicy`` (``blind``): the oracle's planned motions for a random candidate:
-  what a policy that ignores the language can score (about 1/|G|).
-- ``BlindPolicy`` (``scripted-blind``): the scripted skill on a random candidate.
-- ``RandomPolicy``: random actions.
+- ``OraclePolicy`` (``oracle``): plays the demo generator's collision-free planned pick
+  (and place) of the instruction's target (privileged): the upper bound.
+- ``BlindPolicy`` (``blind``): the oracle's planned motions for a random candidate: what a
+  policy that ignores the language can score (about 1/|G|).
+- ``ScriptedOraclePolicy`` (``scripted``): a scripted top-down servo to the instruction's
+  target that grasps and lifts it; with a receptacle it then carries it over it and opens.
+- ``ScriptedBlindPolicy`` (``scripted-blind``): the scripted skill on a random candidate.
+- ``RandomPolicy`` (``random``): random actions.
 """
 
 from __future__ import annotations
 
-from collections.abc import Iterator
-from contextlib import contextmanager
-from dataclasses import replace
-
 import numpy as np
 import torch
 
-from .scripted import CLOSED, OPEN, SERVO_GAIN, STEP_LIMIT, _ee_action, arm_for, tcp_position
+from .demos.script import MotionScript
+from .episode import EpisodeSpec
+from .planning import PlanningScene
 
 GRASP_DEPTH = 0.035  # below an object's top, where the fingers close
 CLEARANCE = 0.08  # above the tallest object while moving across the table
 MAX_WAYPOINT_STEPS = 90  # give up on a waypoint the arm cannot reach
+SERVO_GAIN = 1.5
+STEP_LIMIT = 0.1  # metres per unit action of pd_ee_delta_pose
+OPEN, CLOSED = 1.0, -1.0  # normalised gripper actions
+
+
+def goal_of(spec: EpisodeSpec) -> tuple[int, int]:
+    """(object, receptacle or -1): the instruction's goal."""
+    return spec.target, spec.goal_destination
+
+
+def random_goal(spec: EpisodeSpec, rng: np.random.Generator) -> tuple[int, int]:
+    """A random candidate (and receptacle): the choice of a policy that ignores the text."""
+    dest = int(rng.choice(spec.destinations)) if spec.destinations else -1
+    return int(rng.choice(spec.candidates)), dest
 
 
 class RandomPolicy:
@@ -54,8 +66,9 @@ class RandomPolicy:
         return self.rng.uniform(low, high).astype(np.float32)
 
 
-class OraclePolicy:
-    """Top-down scripted pick (and place) of a chosen object, with the nearest arm."""
+class ScriptedOraclePolicy:
+    """Top-down scripted pick (and place) of a chosen object, with the arm whose TCP is
+    nearest, by servoing its TCP with ``pd_ee_delta_pose``."""
 
     def __init__(self, seed: int = 0) -> None:
         self.rng = np.random.default_rng(seed)
@@ -67,35 +80,36 @@ class OraclePolicy:
     def get_control_mode(self) -> str:
         return "pd_ee_delta_pose"
 
-    def choose(self, spec) -> tuple[int, int]:
-        """(object, destination or -1): the goal, or random ones when there is none."""
-        obj = spec.target if spec.target >= 0 else int(self.rng.choice(spec.candidates))
-        if not spec.destinations:
-            return obj, -1
-        dest = spec.goal_destination
-        return obj, dest if dest >= 0 else int(self.rng.choice(spec.destinations))
+    def choose(self, spec: EpisodeSpec) -> tuple[int, int]:
+        """(object, receptacle or -1): the goal, or random ones when there is none."""
+        obj, dest = goal_of(spec)
+        if obj < 0:
+            obj = int(self.rng.choice(spec.candidates))
+        if spec.destinations and dest < 0:
+            dest = int(self.rng.choice(spec.destinations))
+        return obj, dest
 
     def bind(self, env) -> None:
         self.env = env
 
     def reset(self, obs) -> None:
-        u = self.env.unwrapped
-        spec = u.episode
-        self.index, dest = self.choose(spec)
-        inst = u.catalog[spec.objects[self.index].uuid]
-        top = u.objects[self.index].pose.p[0].cpu().numpy() + [0.0, 0.0, inst.height]
-        clear = max(u.catalog[o.uuid].height for o in spec.objects) + CLEARANCE
+        scene = PlanningScene.from_env(self.env, *self.choose(self.env.unwrapped.episode))
+        inst = scene.objects[scene.target].instance
+        top = scene.pose(scene.target).p + [0.0, 0.0, inst.height]
+        clear = max(o.instance.height for o in scene.objects) + CLEARANCE
         grasp = top - [0.0, 0.0, min(GRASP_DEPTH, inst.height / 2)]
-        self.arm = arm_for(self.env, top)
+        tcps = scene.state.tcps[:, :2]  # the arm whose TCP is nearest
+        self.arm = int(np.argmin(np.linalg.norm(tcps - top[:2], axis=1)))
+        self.layout = self.env.unwrapped.agent.action_layout()
         plan = [
             ([*top[:2], clear], OPEN, 0.03),
             (grasp, OPEN, 0.006),
             (grasp, CLOSED, -12),
             ([*top[:2], clear], CLOSED, 0.02),
         ]
-        if dest >= 0:
-            region = u.catalog[spec.objects[dest].uuid].interior
-            centre = u.objects[dest].pose.p[0].cpu().numpy() + np.asarray(region.center)
+        if scene.destination >= 0:
+            region = scene.objects[scene.destination].instance.interior
+            centre = scene.pose(scene.destination).p + np.asarray(region.center)
             over = [centre[0], centre[1], clear]
             drop = [centre[0], centre[1], region.center[2] + region.height + inst.height]
             plan += [
@@ -108,28 +122,30 @@ class OraclePolicy:
 
     def act(self, obs) -> torch.Tensor:
         goal, gripper, tol = self.plan[0]
-        here = tcp_position(self.env, self.arm)
+        here = self.env.unwrapped.agent.tcp_positions()[0, self.arm].cpu().numpy()
         delta = np.clip((np.asarray(goal) - here) / STEP_LIMIT * SERVO_GAIN, -1.0, 1.0)
         close = tol > 0 and np.linalg.norm(goal - here) < tol
         done = close or (tol < 0 and self.waited >= -tol) or self.waited >= MAX_WAYPOINT_STEPS
         self.waited = 0 if done else self.waited + 1
         if done and len(self.plan) > 1:
             self.plan = self.plan[1:]
-        return torch.from_numpy(_ee_action(self.env, self.arm, delta, gripper))[None]
+        action = np.zeros(self.env.action_space.shape[-1], dtype=np.float32)
+        action[list(self.layout[self.arm].command[:3])] = delta
+        action[[slots.gripper for slots in self.layout]] = gripper
+        return torch.from_numpy(action)[None]
 
 
-class BlindPolicy(OraclePolicy):
-    """The oracle's skill on a random candidate (and destination): it ignores the text."""
+class ScriptedBlindPolicy(ScriptedOraclePolicy):
+    """The scripted skill on a random candidate (and receptacle): it ignores the text."""
 
-    def choose(self, spec) -> tuple[int, int]:
-        dest = int(self.rng.choice(spec.destinations)) if spec.destinations else -1
-        return int(self.rng.choice(spec.candidates)), dest
+    def choose(self, spec: EpisodeSpec) -> tuple[int, int]:
+        return random_goal(spec, self.rng)
 
 
-class PlannerOraclePolicy:
+class OraclePolicy:
     """Privileged: plays the demo generator's planned motions (``demos.script``) for the
-    instruction's target (``pd_joint_pos``): the pick, then for PlaceA2B the place (or a
-    relay between a dual-arm rig's arms first), each planned from the state the last one
+    instruction's target (``pd_joint_pos``): the pick, then with a receptacle the place (or
+    a relay between a dual-arm rig's arms first), each planned from the state the last one
     left. A pick that ends without the target in the hand is planned again
     (``PICK_ATTEMPTS`` in all). A phase that finds no plan, and every episode without a
     target (the generic, empty and absent-object conditions), leaves the robot holding
@@ -150,22 +166,19 @@ class PlannerOraclePolicy:
         self.env = env
 
     def reset(self, obs) -> None:
-        from .demos.script import MotionScript
-        from .planning.rig import Rig
-
-        self.obj, self.dest = self.choose(self.env.unwrapped.episode)
-        self.script = MotionScript(self.PICK_ATTEMPTS, done=self.obj < 0)
+        obj, dest = self.choose(self.env.unwrapped.episode)
+        scene = PlanningScene.from_env(self.env, obj, dest)
+        self.script = MotionScript(scene, self.PICK_ATTEMPTS, done=obj < 0)
         self.queue: list[np.ndarray] = []
-        self.last = Rig.from_env(self.env).hold.astype(np.float32)
+        self.last = scene.robot.hold(scene.state.qpos).astype(np.float32)
 
-    def choose(self, spec) -> tuple[int, int]:
+    def choose(self, spec: EpisodeSpec) -> tuple[int, int]:
         """(object, receptacle or -1) to go for: the instruction's goal."""
-        return spec.target, spec.goal_destination
+        return goal_of(spec)
 
     def act(self, obs) -> torch.Tensor:
         if not self.queue and not self.script.done:
-            with _aimed_at(self.env, self.obj, self.dest):
-                motion = self.script.next(self.env)
+            motion = self.script.next(self.env)
             if motion is not None and not isinstance(motion, str):
                 self.queue = list(motion)
         if self.queue:
@@ -173,36 +186,22 @@ class PlannerOraclePolicy:
         return torch.from_numpy(self.last)[None]
 
 
-class PlannerBlindPolicy(PlannerOraclePolicy):
-    """The planner oracle's motions for a random candidate (and receptacle): a policy with
+class BlindPolicy(OraclePolicy):
+    """The oracle's planned motions for a random candidate (and receptacle): a policy with
     perfect control that ignores the language, which scores about 1/|G|."""
 
     def __init__(self, seed: int = 0, obs_mode: str = "state") -> None:
         super().__init__(seed, obs_mode)
         self.rng = np.random.default_rng(seed)
 
-    def choose(self, spec) -> tuple[int, int]:
-        dest = int(self.rng.choice(spec.destinations)) if spec.destinations else -1
-        return int(self.rng.choice(spec.candidates)), dest
-
-
-@contextmanager
-def _aimed_at(env, obj: int, dest: int) -> Iterator[None]:
-    """The planners plan for the episode's target and goal receptacle: let them see ``obj``
-    and ``dest`` as those while they plan (nothing steps meanwhile)."""
-    u = env.unwrapped
-    real = u.episodes[0]
-    u.episodes[0] = replace(real, target=obj, goal_destination=dest)
-    try:
-        yield
-    finally:
-        u.episodes[0] = real
+    def choose(self, spec: EpisodeSpec) -> tuple[int, int]:
+        return random_goal(spec, self.rng)
 
 
 REFERENCE_POLICIES = {
-    "oracle": PlannerOraclePolicy,
-    "scripted": OraclePolicy,
-    "blind": PlannerBlindPolicy,
-    "scripted-blind": BlindPolicy,
+    "oracle": OraclePolicy,
+    "blind": BlindPolicy,
+    "scripted": ScriptedOraclePolicy,
+    "scripted-blind": ScriptedBlindPolicy,
     "random": RandomPolicy,
 }

@@ -7,14 +7,13 @@ Every step resumes: re-running with the same ``out`` folder redoes only what is 
 
 from __future__ import annotations
 
-import json
-import os
 from dataclasses import dataclass
 from pathlib import Path
 
 from .demos.generate import generate
 from .evaluation import evaluate
 from .export import ExportSettings, export_trajectory
+from .files import write_json, write_text
 from .metrics import comparison_table
 from .policies import REFERENCE_POLICIES
 from .tasks import TASKS
@@ -84,11 +83,6 @@ def run(out: Path, settings: QuickstartSettings = QuickstartSettings()) -> Path:
                 f"- video `{v.relative_to(out)}`" for v in sorted(folder.glob("videos/*.mp4"))
             ]
     lines += ["", "## Reference policies, Reach/Lift (S)", "", comparison_table(runs), ""]
-    report = out / "report.md"
-    tmp = report.with_suffix(".tmp")
-    tmp.write_text("\n".join(lines[:1] + ["## Outputs", ""] + lines[1:]))
-    os.replace(tmp, report)
-    tmp = out / "summary.json.tmp"
-    tmp.write_text(json.dumps(runs, indent=1))
-    os.replace(tmp, out / "summary.json")
+    report = write_text(out / "report.md", "\n".join(lines[:1] + ["## Outputs", ""] + lines[1:]))
+    write_json(out / "summary.json", runs)
     return report

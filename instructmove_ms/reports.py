@@ -9,20 +9,14 @@ attribution) and the outputs of ManiSkill's evaluator convention: ``episode_resu
 from __future__ import annotations
 
 import csv
-import json
-import os
+import io
 from pathlib import Path
 
+from .files import write_json, write_text
 from .metrics import EpisodeResult, aggregate, markdown_table
 from .plots import grounding_attribution, stage_funnel
 
 SCALARS = ("success", "stage_score", "any_reach", "any_lift", "grounding_error", "control_error")
-
-
-def atomic_write(path: Path, text: str) -> None:
-    tmp = path.with_suffix(path.suffix + ".tmp")
-    tmp.write_text(text)
-    os.replace(tmp, path)
 
 
 def episode_result(row: dict) -> EpisodeResult:
@@ -49,18 +43,17 @@ def write_maniskill_results(out: Path, rows: list[dict]) -> None:
     for key in numeric:
         values = [float(m[key]) for m in per_episode.values() if key in m]
         average[key] = sum(values) / len(values)
-    atomic_write(out / "episode_results.json", json.dumps(per_episode, indent=2))
-    atomic_write(out / "average_metrics.json", json.dumps(average, indent=2))
+    write_json(out / "episode_results.json", per_episode, indent=2)
+    write_json(out / "average_metrics.json", average, indent=2)
 
 
 def write_csv(path: Path, rows: list[dict]) -> None:
     fields = list(dict.fromkeys(k for r in rows for k in r)) or ["episode_id"]
-    tmp = path.with_suffix(path.suffix + ".tmp")
-    with tmp.open("w", newline="") as f:
-        writer = csv.DictWriter(f, fieldnames=fields, restval="")
-        writer.writeheader()
-        writer.writerows(rows)
-    os.replace(tmp, path)
+    text = io.StringIO(newline="")
+    writer = csv.DictWriter(text, fieldnames=fields, restval="")
+    writer.writeheader()
+    writer.writerows(rows)
+    write_text(path, text.getvalue())
 
 
 def write_reports(out: Path, rows: list[dict]) -> dict:
@@ -70,14 +63,14 @@ def write_reports(out: Path, rows: list[dict]) -> dict:
     summary = {"groups": aggregate(results), "episodes": len(results), "errors": errors}
     stage_funnel(summary["groups"], out / "stage_funnel.png")
     grounding_attribution(results, out / "grounding_errors.png")
-    atomic_write(out / "summary.json", json.dumps(summary, indent=2))
+    write_json(out / "summary.json", summary, indent=2)
     note = (
         f"\n{errors} episode(s) ended in a policy error and count as failures "
         "(see the `error` column of episodes.csv).\n"
         if errors
         else ""
     )
-    atomic_write(
+    write_text(
         out / "report.md",
         "# InstructMove evaluation\n\n"
         + markdown_table(summary["groups"])

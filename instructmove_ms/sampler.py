@@ -9,13 +9,14 @@ only on the seed and on which instances qualify, never on their order in the cat
 
 from __future__ import annotations
 
+import dataclasses
 import hashlib
 from dataclasses import dataclass
 
 from .assets.catalog import Catalog, Instance, is_held_out_category
+from .splits import SPLITS
 from .validation import check_choice
 
-SPLITS = ("train", "seen", "unseen_instance", "unseen_category")
 ATTRIBUTES = ("category", "super_category", "color", "shape", "material", "size", "name", "extent")
 RELATIONS = ("match", "differ", "smaller", "larger")
 #: "smaller" / "larger" on "extent" (the largest dimension) need this ratio, so that a person
@@ -59,6 +60,16 @@ class RoleSpec:
         check_choice("role pool", self.pool, POOLS)
         for tag in self.require:
             check_choice("capability tag", tag, TAGS)
+
+
+def with_constraints(
+    roles: tuple[RoleSpec, ...], role: str, *extra: Constraint
+) -> tuple[RoleSpec, ...]:
+    """``roles`` with ``extra`` constraints added to role ``role``."""
+    return tuple(
+        dataclasses.replace(r, constraints=r.constraints + extra) if r.name == role else r
+        for r in roles
+    )
 
 
 class RoleError(ValueError):

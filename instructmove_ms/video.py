@@ -8,13 +8,14 @@ MP4 files written through imageio's FFmpeg writer (a ManiSkill dependency), atom
 
 from __future__ import annotations
 
-import os
 from dataclasses import dataclass
 from pathlib import Path
 
 import cv2
 import imageio.v2 as imageio
 import numpy as np
+
+from .files import atomic_path
 
 FONT = cv2.FONT_HERSHEY_SIMPLEX
 SUCCESS_COLOR = (60, 220, 60)
@@ -94,19 +95,15 @@ def write_video(
 ) -> Path:
     """Write ``frames`` with the overlay, holding the last one for a second with the
     outcome, as an MP4 at ``path`` (atomically)."""
-    path.parent.mkdir(parents=True, exist_ok=True)
-    tmp = path.with_name(f".{path.stem}.tmp{path.suffix}")
-    try:
-        with imageio.get_writer(
+    with (
+        atomic_path(path) as tmp,
+        imageio.get_writer(
             tmp, format="FFMPEG", fps=fps, codec="libx264", macro_block_size=2, quality=7
-        ) as writer:
-            for frame in frames:
-                writer.append_data(overlay(frame, instruction))
-            last = overlay(frames[-1], instruction, outcome)
-            for _ in range(fps):
-                writer.append_data(last)
-    except BaseException:
-        tmp.unlink(missing_ok=True)
-        raise
-    os.replace(tmp, path)
+        ) as writer,
+    ):
+        for frame in frames:
+            writer.append_data(overlay(frame, instruction))
+        last = overlay(frames[-1], instruction, outcome)
+        for _ in range(fps):
+            writer.append_data(last)
     return path

@@ -1,4 +1,11 @@
-"""The shared InstructMove engine: every family is this env plus a declarative TaskSpec."""
+"""The shared InstructMove engine: every family is this env plus its declarative TaskSpec.
+
+The engine builds the episode's scene, tracks the family's stages and computes the shared
+reward for reaching, grasping and lifting the object to move. A family whose task goes on
+after the lift (PlaceA2B) overrides the goal hooks: ``_watched`` (objects whose grasp is
+checked), ``_goal_conditions`` (its stages after lift), ``_goal_reward`` and
+``goal_reward`` (what they add to the dense reward).
+"""
 
 from __future__ import annotations
 
@@ -11,11 +18,6 @@ import torch
 from mani_skill.envs.sapien_env import BaseEnv
 from mani_skill.sensors.camera import CameraConfig
 from mani_skill.utils import sapien_utils
-from mani_skill.utils.geometry.rotation_conversions import (
-    quaternion_apply,
-    quaternion_invert,
-    quaternion_multiply,
-)
 from mani_skill.utils.structs.actor import Actor
 from mani_skill.utils.structs.pose import Pose
 from mani_skill.utils.structs.types import SimConfig
@@ -23,13 +25,13 @@ from mani_skill.utils.structs.types import SimConfig
 from instructmove_ms.assets import DEFAULT_SNAPSHOT, load_snapshot
 from instructmove_ms.assets.sapien_builder import actor_builder
 from instructmove_ms.composer import compose
-from instructmove_ms.episode import CONDITIONS, EpisodeSpec
-from instructmove_ms.sampler import SPLITS
-from instructmove_ms.stages import StageTracker, box_distance
+from instructmove_ms.episode import CONDITIONS, EpisodeSpec, actor_name
+from instructmove_ms.family import TaskSpec
+from instructmove_ms.splits import SPLITS
 from instructmove_ms.validation import check_choice, check_range
 
 from .scene import build_table
-from .spec import TaskSpec
+from .stages import StageTracker, box_distance
 
 
 class InstructMoveEnv(BaseEnv):
@@ -37,6 +39,10 @@ class InstructMoveEnv(BaseEnv):
 
     task: ClassVar[TaskSpec]
     SUPPORTED_REWARD_MODES = ("dense", "normalized_dense", "sparse", "none")
+    #: Dense reward for approaching (1), grasping (1) and raising (2) the object, plus 1 at
+    #: success; ``goal_reward`` is what a family's goal after the lift adds.
+    PICK_REWARD: ClassVar[float] = 5.0
+    goal_reward: ClassVar[float] = 0.0
 
     def __init_subclass__(cls, **kwargs: Any) -> None:
         super().__init_subclass__(**kwargs)
@@ -174,10 +180,10 @@ class InstructMoveEnv(BaseEnv):
                 builder = actor_builder(self.scene, self.catalog[obj.uuid])
                 builder.set_scene_idxs([i])
                 builder.initial_pose = sapien.Pose(p=obj.pose[:3], q=obj.pose[3:])
-                actor = builder.build(name=f"object_{k}_{i}")
+                actor = builder.build(name=f"{actor_name(k)}_{i}")
                 self.remove_from_state_dict_registry(actor)
                 parts.append(actor)
-            merged = Actor.merge(parts, name=f"object_{k}")
+            merged = Actor.merge(parts, name=actor_name(k))
             self.add_to_state_dict_registry(merged)
             self.objects.append(merged)
         for ep in self.episodes:
@@ -186,19 +192,8 @@ class InstructMoveEnv(BaseEnv):
         boxes_t = torch.tensor(np.asarray(boxes), dtype=torch.float32, device=self.device)
         self._box_center, self._box_half = boxes_t[..., :3], boxes_t[..., 3:]
         self._target = torch.tensor([ep.target for ep in self.episodes], device=self.device)
-        self._goal = torch.tensor([ep.goal_destination for ep in self.episodes], device=self.device)
-        regions = []
-        for ep in self.episodes:  # the goal receptacle's interior: floor centre and half size
-            region = (
-                self.catalog[ep.objects[ep.goal_destination].uuid].interior
-                if ep.goal_destination >= 0
-                else None
-            )
-            regions.append([*region.center, *region.half] if region else [0.0] * 5)
-        regions_t = torch.tensor(regions, dtype=torch.float32, device=self.device)
-        self._goal_center, self._goal_half = regions_t[:, :3], regions_t[:, 3:]
         self._z0 = torch.zeros((self.num_envs, len(self.objects)), device=self.device)
-        self._stages = StageTracker(self.num_envs, self.device)
+        self._stages = StageTracker(self.task.stages.names, self.num_envs, self.device)
 
     def _initialize_episode(self, env_idx: torch.Tensor, options: dict) -> None:
         idx = [int(i) for i in env_idx]
@@ -233,86 +228,64 @@ class InstructMoveEnv(BaseEnv):
             grasped[:, k] = self.agent.is_grasping(self.objects[k])
         return grasped
 
-    def _goal_frame(self, points: torch.Tensor, pos: torch.Tensor, quat: torch.Tensor):
-        """``points`` (N, 3) in the goal receptacle's frame, relative to its floor centre;
-        ``pos``, ``quat`` are the objects' poses of this step."""
-        rows = torch.arange(self.num_envs, device=self.device)
-        g = self._goal.clamp(min=0)
-        rel = points - pos[rows, g]
-        return quaternion_apply(quaternion_invert(quat[rows, g]), rel) - self._goal_center
+    def _watched(self, raised: torch.Tensor) -> torch.Tensor:
+        """(N, K) objects whose grasp is checked this step: the raised ones."""
+        return raised
 
-    def _target_in_goal(self, pos: torch.Tensor, quat: torch.Tensor):
-        """The centre (N, 3) and the lowest point's height (N,) of the target's box in the
-        goal receptacle's frame, in any orientation (a cup on its side, an egg upside down)."""
-        rows = torch.arange(self.num_envs, device=self.device)
-        t, g = self._target.clamp(min=0), self._goal.clamp(min=0)
-        centre = pos[rows, t] + quaternion_apply(quat[rows, t], self._box_center[rows, t])
-        local = self._goal_frame(centre, pos, quat)
-        turn = quaternion_multiply(quaternion_invert(quat[rows, g]), quat[rows, t])
-        axes = torch.diag_embed(self._box_half[rows, t])  # (N, 3, 3): half extents as rows
-        depth = sum(quaternion_apply(turn, axes[:, j])[:, 2].abs() for j in range(3))
-        return local, local[:, 2] - depth
+    def _goal_conditions(
+        self, pos: torch.Tensor, quat: torch.Tensor, grasped: torch.Tensor
+    ) -> list[torch.Tensor]:
+        """(N,) conditions of the family's stages after reach and lift (none here), from
+        the objects' poses and grasp flags of this step."""
+        return []
 
-    def _place_flags(self, pos: torch.Tensor, quat: torch.Tensor, grasped: torch.Tensor):
-        """(over the goal interior, resting on its floor and released) for the target."""
-        rows = torch.arange(self.num_envs, device=self.device)
-        t = self._target.clamp(min=0)
-        local, bottom = self._target_in_goal(pos, quat)
-        over = (self._goal >= 0) & (local[:, :2].abs() <= self._goal_half).all(dim=1)
-        speed = torch.stack([o.linear_velocity for o in self.objects], dim=1)[rows, t]
-        th = self.task.thresholds
-        # a tilted round object's box dips below the floor: its centre must stay above it
-        resting = (local[:, 2] > -0.01) & (bottom < th.place_height)
-        still = torch.linalg.norm(speed, dim=1) < th.place_speed
-        return over, over & resting & still & ~grasped[rows, t]
+    def _goal_reward(
+        self,
+        reward: torch.Tensor,
+        info: dict,
+        pos: torch.Tensor,
+        quat: torch.Tensor,
+        grasped: torch.Tensor,
+        lifted: torch.Tensor,
+    ) -> torch.Tensor:
+        """``reward`` plus the family's terms for its goal after the lift (none here);
+        ``grasped`` and ``lifted`` are the target's grasp flag and lift fraction."""
+        return reward
 
     def evaluate(self) -> dict:
-        th = self.task.thresholds
+        th, schema = self.task.thresholds, self.task.stages
         pos, quat = self._object_poses()
         dist = box_distance(
             self.agent.tcp_positions(), pos, quat, self._box_center, self._box_half
         ).amin(dim=1)
         rise = pos[..., 2] - self._z0
         raised = rise > th.lift
-        watch = raised.clone()
-        if self.task.is_place:  # release is part of placing: watch the target's grasp
-            watch[torch.arange(self.num_envs, device=self.device), self._target.clamp(min=0)] = True
-        grasped = self._grasped(watch)
-        over, placed = (
-            self._place_flags(pos, quat, grasped)
-            if self.task.is_place
-            else (torch.zeros_like(self._target, dtype=torch.bool),) * 2
-        )
-        stages = self._stages
-        stages.update(self._target, dist, dist < th.reach, raised & grasped, rise, over, placed)
-        f = {k: v.clone() for k, v in stages.flags.items()}
+        grasped = self._grasped(self._watched(raised))
         rows = torch.arange(self.num_envs, device=self.device)
+        has, t = self._target >= 0, self._target.clamp(min=0)
+        within, lifted = dist < th.reach, raised & grasped
+        conditions = [has & within[rows, t], has & lifted[rows, t]]
+        stages = self._stages
+        stages.update(
+            dist, within, lifted, rise, conditions + self._goal_conditions(pos, quat, grasped)
+        )
+        f = {k: v.clone() for k, v in stages.flags.items()}
+        reach, lift = schema.names[:2]
         info = {
-            "reach": f["reach"],
-            "lift": f["lift"],
+            "reach": f[reach],
+            "lift": f[lift],
             "reached_object": stages.reached_object.clone(),
             "lifted_object": stages.lifted_object.clone(),
             "any_reach": stages.reached_object >= 0,
             "any_lift": stages.lifted_object >= 0,
             "target_distance": torch.where(
-                self._target >= 0,
-                dist[rows, self._target.clamp(min=0)],
-                torch.full_like(dist[:, 0], torch.inf),
+                has, dist[rows, t], torch.full_like(dist[:, 0], torch.inf)
             ),
         }
-        if self.task.is_place:
-            info.update(
-                reach_pick=f["reach"],
-                lift_pick=f["lift"],
-                reach_place=f["reach_place"],
-                place=f["place"],
-                success=f["place"],
-                stage_score=0.25 * sum(f[k].float() for k in StageTracker.STAGES),
-            )
-        else:
-            info.update(
-                success=f["lift"], stage_score=0.5 * f["reach"].float() + 0.5 * f["lift"].float()
-            )
+        info.update({k: v for k, v in f.items() if k not in info})
+        info.update(
+            success=f[schema.success], stage_score=schema.score([v.float() for v in f.values()])
+        )
         return info
 
     def _get_obs_extra(self, info: dict) -> dict:
@@ -325,9 +298,9 @@ class InstructMoveEnv(BaseEnv):
 
     # Rewards --------------------------------------------------------------------------
     def compute_dense_reward(self, obs: Any, action: torch.Tensor, info: dict) -> torch.Tensor:
-        """Staged: approach the target (1), grasp it (1), raise it (2); for PlaceA2B then
-        carry it over the goal receptacle (2) and release it there (1). Success gives the
-        maximum; episodes without a target get 0."""
+        """Staged: approach the target (1), grasp it (1), raise it (2), then the family's
+        goal terms (``_goal_reward``). Success gives the maximum; episodes without a target
+        get 0."""
         rows = torch.arange(self.num_envs, device=self.device)
         t = self._target.clamp(min=0)
         pos, quat = self._object_poses()
@@ -338,16 +311,13 @@ class InstructMoveEnv(BaseEnv):
         reward = 1.0 - torch.tanh(10.0 * info["target_distance"].clamp(max=10.0))
         lifted = (rise / self.task.thresholds.lift).clamp(0, 1)
         reward = reward + grasped.float() * (1.0 + 2.0 * lifted)
-        if self.task.is_place:
-            away = torch.linalg.norm(self._goal_frame(pos[rows, t], pos, quat)[:, :2], dim=1)
-            reward = reward + lifted * grasped.float() * 2.0 * (1.0 - torch.tanh(5.0 * away))
-            reward = reward + info["reach_place"].float() * (~grasped).float()
+        reward = self._goal_reward(reward, info, pos, quat, grasped, lifted)
         reward = torch.where(self._target >= 0, reward, torch.zeros_like(reward))
         return torch.where(info["success"], torch.full_like(reward, self._max_reward), reward)
 
     @property
     def _max_reward(self) -> float:
-        return 8.0 if self.task.is_place else 5.0
+        return self.PICK_REWARD + self.goal_reward
 
     def compute_normalized_dense_reward(self, obs: Any, action: torch.Tensor, info: dict):
         return self.compute_dense_reward(obs, action, info) / self._max_reward

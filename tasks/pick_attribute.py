@@ -2,18 +2,108 @@
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+import numpy as np
 from mani_skill.utils.registration import register_env
 
-from instructmove_ms.sampler import Constraint, RoleSpec
+from instructmove_ms.assets.catalog import Catalog, Instance
+from instructmove_ms.episode import EpisodeSpec
+from instructmove_ms.family import Cue, Members, TaskSpec
+from instructmove_ms.language import attribute_word, names, noun
+from instructmove_ms.sampler import (
+    EACH_OTHER,
+    EXTENT_RATIO,
+    Constraint,
+    RoleError,
+    RoleSpec,
+    with_constraints,
+)
 
 from .base import InstructMoveEnv
-from .pick_category import PICK_TEMPLATES
-from .spec import TaskSpec
+from .pick_category import PICK_STAGES, PICK_TEMPLATES
+
+
+@dataclass(frozen=True)
+class AttributeCue(Cue):
+    """The instruction names the goal's value of one attribute ("the red mug", "the biggest
+    apple"), drawn per episode from ``attributes``; every distractor differs from the target
+    in it (sizes by ``EXTENT_RATIO`` in the largest dimension) and colours are pairwise
+    distinct, so that any candidate can be named by its colour."""
+
+    attributes: tuple[str, ...] = ("color", "size", "shape", "material")
+
+    def draw(self, rng: np.random.Generator, roles: tuple[RoleSpec, ...]):
+        attribute = self.attributes[int(rng.integers(len(self.attributes)))]
+        if attribute == "size":
+            direction = ("smaller", "larger")[int(rng.integers(2))]
+            extra = (Constraint("extent", direction, "target"),)
+            # the distractors are smaller: the target is the larger one, and vice versa
+            cue = {
+                "attribute": "size",
+                "direction": "larger" if direction == "smaller" else "smaller",
+            }
+        else:
+            extra = (Constraint(attribute, "differ", "target"),)
+            cue = {"attribute": attribute}
+        extra += (
+            Constraint("color", "differ", "target"),
+            Constraint("color", "differ", EACH_OTHER),
+        )
+        return cue, with_constraints(roles, "distractor", *extra)
+
+    def admits(self, cue: dict, assigned: dict[str, list[Instance]]) -> None:
+        target = assigned["target"][0]
+        if cue["attribute"] != "size" and attribute_word(target, cue["attribute"]) is None:
+            raise RoleError(f"{target.category} has no word for its {cue['attribute']}")
+
+    def phrase(
+        self, rng: np.random.Generator, cue: dict, members: Members, goal: int, split: str
+    ) -> str:
+        inst = members[goal][0]
+        word = attribute_word(inst, cue["attribute"], cue.get("direction", ""))
+        return f"{word} {noun(rng, inst)}"
+
+    def alternative(self, cue: dict, members: Members, candidates: Sequence[int], goal: int):
+        """The same attribute where the goal's material or shape is unique among the
+        candidates and has a word, else its colour (pairwise distinct)."""
+        inst = members[goal][0]
+        others = [members[k][0] for k in candidates if k != goal]
+        attribute = cue["attribute"]
+        if attribute in ("material", "shape"):
+            unique = all(getattr(o, attribute) != getattr(inst, attribute) for o in others)
+            if unique and attribute_word(inst, attribute):
+                return cue
+        return {"attribute": "color"}
+
+    def matches(self, spec: EpisodeSpec, catalog: Catalog, k: int) -> bool:
+        inst = catalog[spec.objects[k].uuid]
+        others = [catalog[spec.objects[c].uuid] for c in spec.candidates if c != k]
+        cue, text = spec.cue, spec.instruction
+        if not names(inst, text):
+            return False
+        if cue["attribute"] == "size":
+            bigger = cue["direction"] == "larger"
+            return all(
+                (max(inst.dims) >= EXTENT_RATIO * max(o.dims))
+                if bigger
+                else (EXTENT_RATIO * max(inst.dims) <= max(o.dims))
+                for o in others
+            )
+        word = attribute_word(inst, cue["attribute"])
+        if not word or f" {word} " not in f" {text} ":
+            return False
+        if cue["attribute"] == "color":
+            return all(inst.colors[0] not in o.colors for o in others)
+        return all(getattr(o, cue["attribute"]) != getattr(inst, cue["attribute"]) for o in others)
+
 
 PICK_ATTRIBUTE = TaskSpec(
     env_id="PickAttribute-InstructMove",
     family="pick_attribute",
-    cue="attribute",
+    cue=AttributeCue(),
+    stages=PICK_STAGES,
     default_robot="piperx",
     supported_robots=("franka", "piperx"),
     roles=(
@@ -24,7 +114,6 @@ PICK_ATTRIBUTE = TaskSpec(
     ),
     count_limits={"distractor": (1, 3)},
     templates=PICK_TEMPLATES,
-    attributes=("color", "size", "shape", "material"),
 )
 
 

@@ -1,13 +1,26 @@
-"""PickCategory: pick up the object of the named category among cross-category distractors."""
+"""PickCategory: pick up the object of the named category among cross-category distractors.
+
+Declares what the other pick families share: the pick stage schema (reach, then lift) and
+the pick templates.
+"""
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
+import numpy as np
 from mani_skill.utils.registration import register_env
 
+from instructmove_ms.assets.catalog import Catalog
+from instructmove_ms.episode import EpisodeSpec
+from instructmove_ms.family import Cue, Members, StageSchema, TaskSpec
+from instructmove_ms.language import names, referring_expression
 from instructmove_ms.sampler import EACH_OTHER, Constraint, RoleSpec
 
 from .base import InstructMoveEnv
-from .spec import TaskSpec
+
+#: S_pick = 0.5 reach + 0.5 lift; success is the lift.
+PICK_STAGES = StageSchema(("reach", "lift"), success="lift")
 
 PICK_TEMPLATES = (
     "pick up the {target}",
@@ -22,10 +35,32 @@ PICK_TEMPLATES = (
     "get the {target} and hold it up",
 )
 
+
+@dataclass(frozen=True)
+class CategoryCue(Cue):
+    """The instruction names the goal by a referring expression of its own (category nouns
+    with colours, material, parts): the distractors' categories and nouns differ from it.
+    ``kind`` is what the episode spec stores as its cue."""
+
+    kind: str = "category"
+
+    def draw(self, rng: np.random.Generator, roles: tuple[RoleSpec, ...]):
+        return {"kind": self.kind}, roles
+
+    def phrase(
+        self, rng: np.random.Generator, cue: dict, members: Members, goal: int, split: str
+    ) -> str:
+        return referring_expression(rng, members[goal][0], split)
+
+    def matches(self, spec: EpisodeSpec, catalog: Catalog, k: int) -> bool:
+        return names(catalog[spec.objects[k].uuid], spec.instruction)
+
+
 PICK_CATEGORY = TaskSpec(
     env_id="PickCategory-InstructMove",
     family="pick_category",
-    cue="category",
+    cue=CategoryCue(),
+    stages=PICK_STAGES,
     default_robot="piperx",
     supported_robots=("franka", "piperx"),
     roles=(

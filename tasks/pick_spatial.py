@@ -2,19 +2,78 @@
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+import numpy as np
 from mani_skill.utils.registration import register_env
 
-from instructmove_ms.relations import RELATIONS
+from instructmove_ms.assets.catalog import Catalog
+from instructmove_ms.episode import EpisodeSpec
+from instructmove_ms.family import Cue, Members, TaskSpec
+from instructmove_ms.language import names, noun
+from instructmove_ms.layout import Placement
+from instructmove_ms.relations import OPPOSITE, PHRASES, RELATIONS, holds, unique_holder
 from instructmove_ms.sampler import Constraint, RoleSpec
 
 from .base import InstructMoveEnv
-from .pick_category import PICK_TEMPLATES
-from .spec import TaskSpec
+from .pick_category import PICK_STAGES, PICK_TEMPLATES
+
+
+@dataclass(frozen=True)
+class RelationCue(Cue):
+    """The instruction names the goal by a relation to the reference object ("the apple to
+    the left of the bowl"), drawn per episode from ``relations``: the layout puts the target
+    where the relation holds and the same-category distractor where its opposite does. The
+    cue stores the relation and the reference's index."""
+
+    relations: tuple[str, ...] = RELATIONS
+
+    def draw(self, rng: np.random.Generator, roles: tuple[RoleSpec, ...]):
+        return {"relation": self.relations[int(rng.integers(len(self.relations)))]}, roles
+
+    def arrange(self, cue: dict, index: dict[str, list[int]], count: int):
+        """Reference, target and distractor placed first, each checked against the
+        reference already placed."""
+        ref, target, distractor = (index[r][0] for r in ("reference", "target", "distractor"))
+        order = [ref, target, distractor]
+        order += [k for k in range(count) if k not in order]
+        relation = cue["relation"]
+
+        def accept(i: int, p: Placement, placed: dict[int, Placement]) -> bool:
+            if i not in (target, distractor):
+                return True
+            wanted = relation if i == target else OPPOSITE[relation]
+            return holds(wanted, (p.x, p.y), (placed[ref].x, placed[ref].y))
+
+        return order, accept, {**cue, "reference": ref}
+
+    def phrase(
+        self, rng: np.random.Generator, cue: dict, members: Members, goal: int, split: str
+    ) -> str:
+        inst, ref = members[goal][0], members[cue["reference"]][0]
+        options = PHRASES[cue["relation"]]
+        relation = options[int(rng.integers(len(options)))]
+        return f"{noun(rng, inst)} {relation} the {noun(rng, ref)}"
+
+    def alternative(self, cue: dict, members: Members, candidates: Sequence[int], goal: int):
+        """The opposite relation: the distractor holds it by the same margin."""
+        return {**cue, "relation": OPPOSITE[cue["relation"]]}
+
+    def matches(self, spec: EpisodeSpec, catalog: Catalog, k: int) -> bool:
+        cue = spec.cue
+        ref = spec.objects[cue["reference"]].pose[:2]
+        xy = [spec.objects[c].pose[:2] for c in spec.candidates]
+        holder = unique_holder(cue["relation"], xy, ref)
+        named = names(catalog[spec.objects[k].uuid], spec.instruction)
+        return named and holder is not None and spec.candidates[holder] == k
+
 
 PICK_SPATIAL = TaskSpec(
     env_id="PickSpatial-InstructMove",
     family="pick_spatial",
-    cue="spatial",
+    cue=RelationCue(),
+    stages=PICK_STAGES,
     default_robot="franka",
     supported_robots=("franka", "piperx"),
     roles=(
@@ -34,7 +93,6 @@ PICK_SPATIAL = TaskSpec(
     ),
     count_limits={"distractor": (1, 1)},
     templates=PICK_TEMPLATES,
-    relations=RELATIONS,
 )
 
 

@@ -2,12 +2,22 @@
 
 from __future__ import annotations
 
+import torch
+from mani_skill.utils.geometry.rotation_conversions import (
+    quaternion_apply,
+    quaternion_invert,
+    quaternion_multiply,
+)
 from mani_skill.utils.registration import register_env
 
+from instructmove_ms.family import StageSchema, TaskSpec
 from instructmove_ms.sampler import EACH_OTHER, Constraint, RoleSpec
 
 from .base import InstructMoveEnv
-from .spec import TaskSpec
+from .pick_category import CategoryCue
+
+#: S_pnp = 0.25 (reach_pick + lift_pick + reach_place + place); success is the place.
+PLACE_STAGES = StageSchema(("reach_pick", "lift_pick", "reach_place", "place"), success="place")
 
 #: Objects small enough to fit inside any destination of the pool.
 MAX_OBJECT_FOOTPRINT = 0.09
@@ -16,7 +26,9 @@ MIN_INTERIOR = 0.1
 PLACE_A2B = TaskSpec(
     env_id="PlaceA2B-InstructMove",
     family="place_a2b",
-    cue="place",
+    # the object by its own referring expression; the destination slot names the receptacle
+    cue=CategoryCue(kind="place"),
+    stages=PLACE_STAGES,
     default_robot="piperx",
     supported_robots=("franka", "piperx"),
     roles=(
@@ -90,3 +102,77 @@ class PlaceA2BEnv(InstructMoveEnv):
     """
 
     task = PLACE_A2B
+    goal_reward = 3.0  # carrying the target over the goal receptacle (2), releasing it (1)
+
+    def _load_scene(self, options: dict) -> None:
+        super()._load_scene(options)
+        self._goal = torch.tensor([ep.goal_destination for ep in self.episodes], device=self.device)
+        regions = []
+        for ep in self.episodes:  # the goal receptacle's interior: floor centre and half size
+            region = (
+                self.catalog[ep.objects[ep.goal_destination].uuid].interior
+                if ep.goal_destination >= 0
+                else None
+            )
+            regions.append([*region.center, *region.half] if region else [0.0] * 5)
+        regions_t = torch.tensor(regions, dtype=torch.float32, device=self.device)
+        self._goal_center, self._goal_half = regions_t[:, :3], regions_t[:, 3:]
+
+    def _goal_frame(self, points: torch.Tensor, pos: torch.Tensor, quat: torch.Tensor):
+        """``points`` (N, 3) in the goal receptacle's frame, relative to its floor centre;
+        ``pos``, ``quat`` are the objects' poses of this step."""
+        rows = torch.arange(self.num_envs, device=self.device)
+        g = self._goal.clamp(min=0)
+        rel = points - pos[rows, g]
+        return quaternion_apply(quaternion_invert(quat[rows, g]), rel) - self._goal_center
+
+    def _target_in_goal(self, pos: torch.Tensor, quat: torch.Tensor):
+        """The centre (N, 3) and the lowest point's height (N,) of the target's box in the
+        goal receptacle's frame, in any orientation (a cup on its side, an egg upside down)."""
+        rows = torch.arange(self.num_envs, device=self.device)
+        t, g = self._target.clamp(min=0), self._goal.clamp(min=0)
+        centre = pos[rows, t] + quaternion_apply(quat[rows, t], self._box_center[rows, t])
+        local = self._goal_frame(centre, pos, quat)
+        turn = quaternion_multiply(quaternion_invert(quat[rows, g]), quat[rows, t])
+        axes = torch.diag_embed(self._box_half[rows, t])  # (N, 3, 3): half extents as rows
+        depth = sum(quaternion_apply(turn, axes[:, j])[:, 2].abs() for j in range(3))
+        return local, local[:, 2] - depth
+
+    def _watched(self, raised: torch.Tensor) -> torch.Tensor:
+        """The raised objects and the target: release is part of placing."""
+        watch = raised.clone()
+        watch[torch.arange(self.num_envs, device=self.device), self._target.clamp(min=0)] = True
+        return watch
+
+    def _goal_conditions(
+        self, pos: torch.Tensor, quat: torch.Tensor, grasped: torch.Tensor
+    ) -> list[torch.Tensor]:
+        """reach_place: the target's box centre is over the goal interior; place: it rests
+        on the floor inside (its lowest point within ``place_height``, its centre above the
+        floor), slower than ``place_speed``, released."""
+        rows = torch.arange(self.num_envs, device=self.device)
+        t = self._target.clamp(min=0)
+        local, bottom = self._target_in_goal(pos, quat)
+        over = (self._goal >= 0) & (local[:, :2].abs() <= self._goal_half).all(dim=1)
+        speed = torch.stack([o.linear_velocity for o in self.objects], dim=1)[rows, t]
+        th = self.task.thresholds
+        # a tilted round object's box dips below the floor: its centre must stay above it
+        resting = (local[:, 2] > -0.01) & (bottom < th.place_height)
+        still = torch.linalg.norm(speed, dim=1) < th.place_speed
+        return [over, over & resting & still & ~grasped[rows, t]]
+
+    def _goal_reward(
+        self,
+        reward: torch.Tensor,
+        info: dict,
+        pos: torch.Tensor,
+        quat: torch.Tensor,
+        grasped: torch.Tensor,
+        lifted: torch.Tensor,
+    ) -> torch.Tensor:
+        """Carry the lifted target over the goal receptacle (2), release it there (1)."""
+        t = self._target.clamp(min=0)
+        rows = torch.arange(self.num_envs, device=self.device)
+        away = torch.linalg.norm(self._goal_frame(pos[rows, t], pos, quat)[:, :2], dim=1)
+        reward = reward + lifted * grasped.float() * 2.0 * (1.0 - torch.tanh(5.0 * away))
+        return reward + info["reach_place"].float() * (~grasped).float()

@@ -52,3 +52,14 @@ def hand_spec(placed, robot: str, robot_qpos, target: int = 0):
         candidates=tuple(range(len(objects))),
         robot_qpos=tuple(float(q) for q in robot_qpos),
     )
+
+
+def verify_spec(spec, catalog) -> list[str]:
+    """The verifier's problems with ``spec``, for its family and its robot's gripper."""
+    from mani_skill.agents.registration import REGISTERED_AGENTS
+
+    from instructmove_ms.tasks import FAMILIES
+    from instructmove_ms.verify import verify
+
+    opening = REGISTERED_AGENTS[spec.robot].agent_cls.gripper.max_width
+    return verify(spec, catalog, FAMILIES[spec.family], opening)

@@ -84,7 +84,7 @@ def test_interrupted_run_resumes_to_exactly_n(demos, tmp_path, monkeypatch, caps
     out, _ = demos
     shutil.copytree(out / "shards", tmp_path / "shards")  # the first run's finished work
     shutil.copy(out / f"{STEM}.ledger.json", tmp_path)
-    real = generator.synthesizer(TASK)
+    real = generator.synthesize
     calls = []
 
     def interrupt_second(env, variant):
@@ -93,7 +93,7 @@ def test_interrupted_run_resumes_to_exactly_n(demos, tmp_path, monkeypatch, caps
             raise KeyboardInterrupt  # Ctrl-C while the fourth demo is being planned
         return real(env, variant)
 
-    monkeypatch.setattr(generator, "synthesizer", lambda task: interrupt_second)
+    monkeypatch.setattr(generator, "synthesize", interrupt_second)
     with pytest.raises(KeyboardInterrupt):
         generate(TASK, ROBOT, 4, tmp_path, shard_size=1)
     ledger = json.loads((tmp_path / f"{STEM}.ledger.json").read_text())

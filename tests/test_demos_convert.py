@@ -12,8 +12,9 @@ import numpy as np
 import pytest
 
 from instructmove_ms.cli import main
-from instructmove_ms.demos.convert import convert
+from instructmove_ms.demos.ee_control import convert
 from instructmove_ms.demos.generate import generate
+from instructmove_ms.episode import actor_name
 
 TASK, ROBOT = "PickCategory-InstructMove", "piperx"
 STEM = f"{TASK}_{ROBOT}"
@@ -36,7 +37,7 @@ def test_converted_demo_lifts_the_target_with_end_effector_actions(converted):
     target = sidecar[0]["spec"]["target"]
     with h5py.File(report.path) as f, h5py.File(out / f"{STEM}.h5") as source:
         actions = f["traj_0/actions"][()]
-        height = f[f"traj_0/env_states/actors/object_{target}"][:, 2]
+        height = f[f"traj_0/env_states/actors/{actor_name(target)}"][:, 2]
         robot = "traj_0/env_states/articulations/piperx"
         end, planned_end = f[robot][-1], source[robot][-1]
     # arm_left (6), arm_right (6), then the two gripper widths, all within the action range

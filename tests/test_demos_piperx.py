@@ -8,10 +8,10 @@ import pytest
 import torch
 
 from conftest import make_env
+from contacts import FORCE_LIMIT, collisions
 from instructmove_ms.assets.affordances import enveloping_grasps
 from instructmove_ms.demos import pick
-from instructmove_ms.demos.contacts import FORCE_LIMIT, collisions
-from instructmove_ms.planning import Rig, arm_order
+from instructmove_ms.planning import PlanningScene
 
 TASK = "PickCategory-InstructMove"
 
@@ -50,11 +50,14 @@ def _checked_rollout(env, actions: np.ndarray) -> tuple[dict, float, dict]:
     return info, float(_target_xyz(env)[2] - z0), worst
 
 
+def _plan(env, **kwargs):
+    return pick.plan_pick(PlanningScene.from_env(env), **kwargs)
+
+
 def _moved_arm(env, actions: np.ndarray) -> int:
     """The PiperX arm whose joint targets change along ``actions``."""
-    motion = [
-        np.abs(np.diff(actions[:, Rig.from_env(env, k).arm_slots], axis=0)).sum() for k in (0, 1)
-    ]
+    scene = PlanningScene.from_env(env)
+    motion = [np.abs(np.diff(actions[:, scene.rig(k).arm_slots], axis=0)).sum() for k in (0, 1)]
     return int(np.argmax(motion))
 
 
@@ -66,7 +69,7 @@ def test_planned_pick_lifts_target_and_touches_nothing_else(envs, robot, seed):
     checked with the fingers at its own opening, not the rig's wider one)."""
     env = envs(robot)
     env.reset(seed=seed)
-    actions = pick.plan_pick(env)
+    actions = _plan(env)
     assert not isinstance(actions, str), actions
     assert actions.shape[1] == env.action_space.shape[-1]
     info, rise, worst = _checked_rollout(env, actions)
@@ -85,9 +88,9 @@ def test_a_cup_on_a_saucer_is_held_around_its_rim():
     u = env.unwrapped
     cup = u.catalog[u.episode.objects[u.episode.target].uuid]
     assert cup.category == "coffee_cup"
-    actions = pick.plan_pick(env)
+    actions = _plan(env)
     assert not isinstance(actions, str), actions
-    rig = Rig.from_env(env, _moved_arm(env, actions))
+    rig = PlanningScene.from_env(env).rig(_moved_arm(env, actions))
     rim = min(g.width for g in enveloping_grasps(cup, rig.gripper.max_width))
     assert actions[0, rig.gripper_slot] > rim  # opened around the whole cup
     info, rise, worst = _checked_rollout(env, actions)
@@ -99,10 +102,11 @@ def test_piperx_picks_with_the_nearer_arm(envs):
     env = envs("piperx")
     for seed, arm in ((3, 1), (6, 0)):  # targets on the right and on the left
         env.reset(seed=seed)
-        assert arm_order(env, _target_xyz(env))[0] == arm
-        actions = pick.plan_pick(env)
+        scene = PlanningScene.from_env(env)
+        assert scene.arm_order(scene.pose(scene.target).p)[0] == arm
+        actions = _plan(env)
         assert _moved_arm(env, actions) == arm
-        hold = Rig.from_env(env, 1 - arm)
+        hold = scene.rig(1 - arm)
         assert np.allclose(actions[:, hold.arm_slots], hold.start, atol=1e-6)
 
 
@@ -115,7 +119,7 @@ def test_piperx_falls_back_to_the_other_arm(envs, monkeypatch):
         return iter(()) if rig.arm == 1 else arm_plans(e, rig, *args)
 
     monkeypatch.setattr(pick, "_arm_plans", left_only)
-    actions = pick.plan_pick(env)
+    actions = _plan(env)
     assert not isinstance(actions, str), actions
     assert _moved_arm(env, actions) == 0
     info, rise, worst = _checked_rollout(env, actions)
@@ -126,9 +130,9 @@ def test_failure_reason_covers_both_arms(envs, monkeypatch):
     env = envs("piperx")
     env.reset(seed=3)
     monkeypatch.setattr(pick, "_arm_plans", lambda *args: iter(()))
-    assert pick.plan_pick(env) == "no_plan"  # grasp candidates, but no path to any
+    assert _plan(env) == "no_plan"  # grasp candidates, but no path to any
     monkeypatch.setattr(pick, "candidates", lambda *args: iter(()))
-    assert pick.plan_pick(env) == "no_ik"
+    assert _plan(env) == "no_ik"
 
 
 def test_skip_passes_over_grasp_plans(envs):
@@ -136,16 +140,16 @@ def test_skip_passes_over_grasp_plans(envs):
     last plan of both arms."""
     env = envs("franka")
     env.reset(seed=0)
-    first, second = pick.plan_pick(env), pick.plan_pick(env, skip=1)
+    first, second = _plan(env), _plan(env, skip=1)
     assert not isinstance(second, str), second
     assert first.shape != second.shape or not np.allclose(first, second)
-    assert pick.plan_pick(env, skip=10**6) == "no_plan"
+    assert _plan(env, skip=10**6) == "no_plan"
 
 
 def test_contact_check_sees_the_hand_pressed_on_the_table(envs):
     env = envs("franka")
     env.reset(seed=0)
-    rig = Rig.from_env(env)
+    rig = PlanningScene.from_env(env).rig()
     down = rig.start.copy()
     down[1], down[3] = 1.5, -0.5  # leans forward: the hand ends below the table top
     seen: dict[tuple[str, str], float] = {}

@@ -17,9 +17,10 @@ from mani_skill.utils.wrappers import RecordEpisode
 
 from conftest import make_env
 from instructmove_ms import heldout
-from instructmove_ms.demos.place import PLACE_STAGES, goal_interior
-from instructmove_ms.demos.synthesis import synthesizer
-from instructmove_ms.planning import Rig
+from instructmove_ms.demos.place import goal_interior
+from instructmove_ms.demos.synthesis import synthesize
+from instructmove_ms.planning import PlanningScene
+from instructmove_ms.tasks import PLACE_STAGES
 
 TASK, ROBOT = "PlaceA2B-InstructMove", "franka"
 STEM = f"{TASK}_{ROBOT}"
@@ -31,7 +32,7 @@ def _outcome(env, flags, reason) -> dict:
     u = env.unwrapped
     target = u.objects[u.episode.target]
     pose = u.agent.robot.pose.sp.inv() * target.pose.sp
-    interior = goal_interior(env)
+    interior = goal_interior(PlanningScene.from_env(env))
     local = np.linalg.inv(interior.frame) @ np.append(pose.p, 1.0)
     lo, hi = (np.asarray(b) for b in u.catalog[u.episode.objects[u.episode.target].uuid].bounds)
     centre = np.linalg.inv(interior.frame) @ np.append((pose * sapien.Pose((lo + hi) / 2)).p, 1)
@@ -79,7 +80,7 @@ def recorded(tmp_path_factory):
     outcomes = []
     for seed in SEEDS:
         env.reset(seed=seed)
-        flags, reason = synthesizer(TASK)(env)
+        flags, reason = synthesize(env)
         outcomes.append(_outcome(env, flags, reason))
         env.flush_trajectory(save=reason is None)
     env.close()
@@ -90,8 +91,8 @@ def recorded(tmp_path_factory):
 def test_place_succeeds_within_the_horizon(recorded, k):
     flags, reason = recorded[1][k]["flags"], recorded[1][k]["reason"]
     assert reason is None and flags[-1]["success"]
-    assert len(flags) <= 500 and set(flags[0]) == set(PLACE_STAGES)
-    first = [next(i for i, f in enumerate(flags) if f[s]) for s in PLACE_STAGES[:4]]
+    assert len(flags) <= 500 and set(flags[0]) == set(PLACE_STAGES.flags)
+    first = [next(i for i, f in enumerate(flags) if f[s]) for s in PLACE_STAGES.names]
     assert first == sorted(first)  # reach_pick, lift_pick, reach_place, place in order
 
 
@@ -133,7 +134,7 @@ def test_piperx_relays_a_far_goal_to_its_other_arm():
     env = make_env(TASK, robot_uids="piperx", control_mode="pd_joint_pos")
     env.reset(seed=10)
     grippers = _watch_holders(env)
-    flags, reason = synthesizer(TASK)(env)
+    flags, reason = synthesize(env)
     outcome = _outcome(env, flags, reason)
     env.close()
     assert reason is None and len(flags) <= 500
@@ -167,7 +168,7 @@ def test_piperx_leans_its_hand_into_a_far_receptacle():
         return None, None, None, None, info
 
     step, env.step = env.step, watch
-    flags, reason = synthesizer(TASK)(env)
+    flags, reason = synthesize(env)
     outcome = _outcome(env, flags, reason)
     env.close()
     assert reason is None
@@ -187,8 +188,9 @@ def test_an_object_resting_upside_down_in_the_receptacle_counts_as_placed():
     target = u.objects[u.episode.target]
     lo, hi = u.catalog[u.episode.objects[u.episode.target].uuid].bounds
     assert hi[2] - lo[2] > u.task.thresholds.place_height + 0.01  # the origin ends that high
-    interior = goal_interior(env)
-    hold = torch.from_numpy(Rig.from_env(env).hold)[None]
+    scene = PlanningScene.from_env(env)
+    interior = goal_interior(scene)
+    hold = torch.from_numpy(scene.rig().hold)[None]
     placed = []
     for shift in (0.0, 0.3):  # into the receptacle, then beside it on the table
         floor = interior.frame[:3, 3] + [0.0, shift, 0.0]
@@ -200,7 +202,7 @@ def test_an_object_resting_upside_down_in_the_receptacle_counts_as_placed():
         assert target.pose.sp.to_transformation_matrix()[2, 2] < -0.9, "it turned over"
         pos, quat = u._object_poses()
         grasped = torch.zeros(pos.shape[:2], dtype=torch.bool)  # nothing holds it
-        placed.append(bool(u._place_flags(pos, quat, grasped)[1][0]))
+        placed.append(bool(u._goal_conditions(pos, quat, grasped)[1][0]))
     env.close()
     assert placed == [True, False]
 
@@ -216,7 +218,7 @@ def test_piperx_places_into_a_snug_receptacle_and_leaves_it_standing(index):
     env.reset(options={"episode": spec})
     goal = env.unwrapped.objects[spec.goal_destination]
     start = goal.pose.sp
-    flags, reason = synthesizer(TASK)(env)
+    flags, reason = synthesize(env)
     outcome = _outcome(env, flags, reason)
     end = goal.pose.sp
     env.close()
@@ -237,7 +239,7 @@ def test_piperx_relay_episode_fits_the_horizon(index):
     env = make_env(TASK, robot_uids="piperx", control_mode="pd_joint_pos")
     env.reset(options={"episode": spec})
     holders = _watch_holders(env)
-    flags, reason = synthesizer(TASK)(env)
+    flags, reason = synthesize(env)
     outcome = _outcome(env, flags, reason)
     env.close()
     assert reason is None and len(flags) <= 500

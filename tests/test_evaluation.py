@@ -14,7 +14,8 @@ from instructmove_ms import evaluation, heldout
 from instructmove_ms.cli import main
 from instructmove_ms.evaluation import evaluate, evaluate_config
 from instructmove_ms.heldout import EvaluatorConfig
-from instructmove_ms.policies import BlindPolicy, OraclePolicy, RandomPolicy
+from instructmove_ms.policies import RandomPolicy, ScriptedBlindPolicy, ScriptedOraclePolicy
+from instructmove_ms.tasks import TASKS
 
 TASK = "PickCategory-InstructMove"
 
@@ -44,7 +45,9 @@ def test_reports_and_resume(tmp_path):
 
 
 def test_oracle_beats_blind_and_its_config_reproduces_the_set(tmp_path, capsys):
-    oracle = evaluate(OraclePolicy(0), TASK, "seen", tmp_path / "a", robot="franka", episodes=4)
+    oracle = evaluate(
+        ScriptedOraclePolicy(0), TASK, "seen", tmp_path / "a", robot="franka", episodes=4
+    )
     config = tmp_path / "config.json"
     common = ["eval", "--task", TASK, "--robot", "franka", "--episodes", "4"]
     assert main([*common, "--write-config", str(config)]) == 0
@@ -60,7 +63,9 @@ def test_oracle_beats_blind_and_its_config_reproduces_the_set(tmp_path, capsys):
         assert (tmp_path / "a" / name).read_text() == (tmp_path / "b" / name).read_text(), name
     average = json.loads((tmp_path / "a" / "average_metrics.json").read_text())
     assert average["reach"] == oracle["groups"][0]["reach"]
-    blind = evaluate(BlindPolicy(1), TASK, "seen", tmp_path / "c", robot="franka", episodes=4)
+    blind = evaluate(
+        ScriptedBlindPolicy(1), TASK, "seen", tmp_path / "c", robot="franka", episodes=4
+    )
     assert oracle["groups"][0]["reach"] > blind["groups"][0]["reach"]
     assert oracle["groups"][0]["reach"] >= 0.75
 
@@ -104,6 +109,7 @@ class FakeVectorEnv:
         self.num_envs, self.succeed_at = num_envs, succeed_at
         self.single_action_space = gym.spaces.Box(-1, 1, (8,))
         self.unwrapped, self.catalog, self.resets, self.steps = self, None, [], 0
+        self.task = TASKS[TASK]
 
     def reset(self, seed, options):
         assert len(seed) == len(options["episode"]) == self.num_envs

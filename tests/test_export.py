@@ -25,7 +25,7 @@ from instructmove_ms.export import (
     read_episode,
     score_inputs,
 )
-from instructmove_ms.export.replay import Frame, Rig
+from instructmove_ms.export.replay import Frame, RobotParts
 from instructmove_ms.export.writer import write_episode
 from instructmove_ms.metrics import score_episode
 
@@ -170,8 +170,8 @@ def test_files_decode_into_foxglove_schemas(exported):
 
 def test_score_inputs_feed_the_metrics(exported):
     ep = read_episode(sorted(exported[1].written)[0])
-    spec, info = score_inputs(ep)
-    result = score_episode(spec, info, load_snapshot())
+    spec, info, stages = score_inputs(ep)
+    result = score_episode(spec, info, stages, load_snapshot())
     assert result.stages == {k: ep.stages[k][-1] for k in ("reach", "lift")}
     assert result.success == ep.stages["success"][-1] == ep.metadata["success"]
 
@@ -211,7 +211,7 @@ def test_bad_input_names_the_file_and_writes_nothing(source, tmp_path, fault):
 
 
 def test_failed_conversion_leaves_no_partial_file(tmp_path):
-    rig = Rig(("j",), {"arm": (0,)}, ("link",), ("arm[0]",), (), 30.0)
+    rig = RobotParts(("j",), {"arm": (0,)}, ("link",), ("arm[0]",), (), 30.0)
     metadata = {
         "env_id": TASK,
         "spec": {"robot": ROBOT},

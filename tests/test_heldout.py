@@ -8,11 +8,12 @@ import gymnasium as gym
 import pytest
 
 import instructmove_ms  # noqa: F401
+from conftest import verify_spec
 from instructmove_ms import heldout
 from instructmove_ms.assets import load_snapshot
 from instructmove_ms.cli import main
+from instructmove_ms.splits import EVAL_SEED_BASE, EVAL_SPLITS, eval_seed
 from instructmove_ms.tasks import TASKS
-from instructmove_ms.verify import verify
 
 SETS = [
     (env_id, robot) for env_id, spec in sorted(TASKS.items()) for robot in spec.supported_robots
@@ -22,14 +23,14 @@ SETS = [
 @pytest.mark.parametrize(("env_id", "robot"), SETS)
 def test_every_set_is_complete_valid_and_regenerates(env_id, robot):
     catalog = load_snapshot()
-    for split in heldout.EVAL_SPLITS:
+    for split in EVAL_SPLITS:
         specs = heldout.load_set(env_id, robot, split)
         assert len(specs) == heldout.EPISODES_PER_SET
         assert len({s.seed for s in specs}) == len(specs)
         for spec in specs:
-            assert spec.seed >= heldout.EVAL_SEED_BASE, "never a training seed"
+            assert spec.seed >= EVAL_SEED_BASE, "never a training seed"
             assert (spec.family, spec.robot, spec.split) == (TASKS[env_id].family, robot, split)
-            assert verify(spec, catalog) == []
+            assert verify_spec(spec, catalog) == []
         env = gym.make(
             env_id, robot_uids=robot, split=split, obs_mode="state", render_backend="none"
         )
@@ -56,6 +57,6 @@ def test_show_prints_a_stored_spec(capsys):
     )
     spec = json.loads(capsys.readouterr().out)
     assert spec["split"] == "unseen_instance" and spec["robot"] == "franka"
-    assert spec["seed"] == heldout.eval_seed("unseen_instance", 7)
+    assert spec["seed"] == eval_seed("unseen_instance", 7)
     assert main(["episodes", "show", "--index", "100"]) == 2
     assert "--index 100" in capsys.readouterr().err

@@ -8,7 +8,7 @@ import pytest
 import torch
 
 import instructmove_ms  # noqa: F401
-from instructmove_ms import scripted
+import scripted
 from instructmove_ms.metrics import (
     aggregate,
     comparison_table,
@@ -16,6 +16,7 @@ from instructmove_ms.metrics import (
     score_episode,
     wilson,
 )
+from instructmove_ms.tasks import PICK_STAGES
 
 
 def test_wilson_interval_matches_known_values():
@@ -50,12 +51,15 @@ def attribute_spec():
 def test_grounding_and_control_errors_are_told_apart(attribute_spec):
     spec, catalog = attribute_spec
     wrong = next(k for k in spec.candidates if k != spec.target)
-    grounding = score_episode(spec, _info(reached_object=wrong, any_reach=True), catalog)
+    grounding = score_episode(
+        spec, _info(reached_object=wrong, any_reach=True), PICK_STAGES, catalog
+    )
     assert grounding.grounding_error and not grounding.control_error
     assert "category" in grounding.shared, "same-category distractor"
     control = score_episode(
         spec,
         _info(reach=True, reached_object=spec.target, stage_score=0.5, any_reach=True),
+        PICK_STAGES,
         catalog,
     )
     assert control.control_error and not control.grounding_error
@@ -69,6 +73,7 @@ def test_grounding_and_control_errors_are_told_apart(attribute_spec):
             reached_object=spec.target,
             lifted_object=spec.target,
         ),
+        PICK_STAGES,
         catalog,
     )
     assert done.success and not done.control_error and not done.grounding_error
@@ -98,7 +103,7 @@ def test_live_oracle_reach_scores_as_control_errors():
         env.reset(seed=seed)
         spec = env.unwrapped.episode
         info = scripted.reach_object(env, scripted.choose(spec, rng, True))
-        results.append(score_episode(spec, info, env.unwrapped.catalog))
+        results.append(score_episode(spec, info, PICK_STAGES, env.unwrapped.catalog))
     env.close()
     (row,) = aggregate(results)
     assert row["reach"] >= 2 / 3 and row["lift"] == 0.0

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 import instructmove_ms  # noqa: F401
-from instructmove_ms import scripted
+import scripted
 from instructmove_ms.tasks import TASKS
 
 ORACLE_EPISODES, BLIND_EPISODES = 20, 40

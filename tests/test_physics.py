@@ -7,8 +7,8 @@ import pytest
 
 from conftest import hand_spec, make_env
 from instructmove_ms.episode import EpisodeSpec
-from instructmove_ms.scripted import CLOSED, OPEN, hold
-from instructmove_ms.scripted import servo as move_to
+from scripted import CLOSED, OPEN, hold
+from scripted import servo as move_to
 
 LAYOUT = [  # category, x, y (robot frame)
     ("canned_coke", 0.45, -0.05),

@@ -12,6 +12,10 @@ import pytest
 import sapien
 import torch
 from mani_skill.trajectory import replay_trajectory as replay
+from mani_skill.utils.geometry.rotation_conversions import (
+    matrix_to_euler_angles,
+    quaternion_to_matrix,
+)
 from mani_skill.utils.wrappers import RecordEpisode
 
 from conftest import hand_spec, make_env
@@ -283,8 +287,14 @@ def test_gripper_grasps_and_lifts(env, kin, side, category, grasp_depth):
     assert bool(info["lift"]) and bool(info["success"])
 
 
-def test_end_effector_mode_moves_one_arm():
-    env = make_env(robot_uids="piperx", control_mode="pd_ee_delta_pose")
+@pytest.mark.parametrize(
+    "mode",
+    ["pd_ee_delta_pose", "pd_ee_delta_pos", "pd_ee_target_delta_pos", "pd_ee_target_delta_pose"],
+)
+def test_end_effector_modes_move_one_arm(mode):
+    """ManiSkill's Panda end-effector modes (its env tests ask for pd_ee_delta_pos), one
+    controller per arm: a +x command moves the left TCP forward and the right one not."""
+    env = make_env(robot_uids="piperx", control_mode=mode)
     env.reset(seed=0)
     agent = env.unwrapped.agent
     assert list(agent.controller.controllers) == [
@@ -293,16 +303,57 @@ def test_end_effector_mode_moves_one_arm():
         "gripper_left",
         "gripper_right",
     ]
+    left, right = agent.action_layout()
+    assert env.action_space.shape == (2 * len(left.command) + 2,)
     start = agent.tcp_positions()[0].cpu().numpy()
-    action = np.zeros(14, dtype=np.float32)
-    action[0] = 0.3  # left TCP +x by 0.03 m per step
-    action[12:] = OPEN
+    action = np.zeros(env.action_space.shape, dtype=np.float32)
+    # left TCP +x by 0.03 m per step from where it is, or 0.01 m from the last target
+    action[left.command[0]] = 0.1 if "target" in mode else 0.3
+    action[[left.gripper, right.gripper]] = OPEN
     for _ in range(15):
         env.step(torch.from_numpy(action)[None])
     moved = agent.tcp_positions()[0].cpu().numpy() - start
     env.close()
-    assert moved[0, 0] > 0.06 and np.all(np.abs(moved[0, 1:]) < 0.05 * moved[0, 0])
+    assert moved[0, 0] > 0.05 and np.all(np.abs(moved[0, 1:]) < 0.1 * moved[0, 0])
     assert np.linalg.norm(moved[1]) < 0.001
+
+
+def test_absolute_end_effector_pose_mode_reaches_its_target():
+    env = make_env(robot_uids="piperx", control_mode="pd_ee_pose")
+    env.reset(seed=0)
+    agent = env.unwrapped.agent
+    left, right = agent.action_layout()
+    action = np.zeros(env.action_space.shape, dtype=np.float32)
+    for arm, slots in enumerate((left, right)):  # every TCP where it is, the left 5 cm ahead
+        tcp = agent.tcp_links[arm].pose
+        euler = matrix_to_euler_angles(quaternion_to_matrix(tcp.q), "XYZ")[0].numpy()
+        action[list(slots.command)] = np.r_[tcp.p[0].numpy() + [0.05 * (arm == 0), 0, 0], euler]
+        action[slots.gripper] = OPEN
+    goal = action[list(left.command[:3])]
+    for _ in range(40):
+        env.step(torch.from_numpy(action)[None])
+    reached = agent.tcp_positions()[0, 0].cpu().numpy()
+    env.close()
+    assert np.linalg.norm(reached - goal) < 0.01, (reached, goal)
+
+
+@pytest.mark.parametrize("mode", ["pd_joint_target_delta_pos", "pd_joint_vel"])
+def test_joint_modes_turn_the_commanded_joint(mode):
+    env = make_env(robot_uids="piperx", control_mode=mode)
+    env.reset(seed=0)
+    agent = env.unwrapped.agent
+    left, right = agent.action_layout()
+    start = agent.robot.get_qpos()[0].cpu().numpy()
+    action = np.zeros(env.action_space.shape, dtype=np.float32)
+    action[left.command[0]] = 0.5  # left j1
+    action[[left.gripper, right.gripper]] = OPEN
+    for _ in range(10):
+        env.step(torch.from_numpy(action)[None])
+    turned = agent.robot.get_qpos()[0].cpu().numpy() - start
+    env.close()
+    names = [j.name for j in agent.robot.get_active_joints()]
+    assert turned[names.index("left_joint1")] > 0.05
+    assert abs(turned[names.index("right_joint1")]) < 0.01
 
 
 def test_single_arm_variant():

@@ -5,7 +5,7 @@ from __future__ import annotations
 import pytest
 
 from instructmove_ms.evaluation import evaluate
-from instructmove_ms.policies import PlannerBlindPolicy, PlannerOraclePolicy
+from instructmove_ms.policies import BlindPolicy, OraclePolicy
 from instructmove_ms.tasks import TASKS
 
 EPISODES = 8
@@ -19,7 +19,7 @@ CASES.append(("PlaceA2B-InstructMove", "franka"))
 
 @pytest.mark.parametrize(("env_id", "robot"), CASES)
 def test_oracle_scores_on_the_stored_set(env_id, robot, tmp_path):
-    policy = PlannerOraclePolicy()
+    policy = OraclePolicy()
     summary = evaluate(policy, env_id, "seen", tmp_path, robot=robot, episodes=EPISODES)
     (group,) = summary["groups"]
     assert group["robot"] == robot and group["episodes"] == EPISODES
@@ -31,7 +31,7 @@ def test_oracle_scores_on_the_stored_set(env_id, robot, tmp_path):
 
 def test_oracle_without_a_target_holds_still(tmp_path):
     task = "PickCategory-InstructMove"
-    policy = PlannerOraclePolicy()
+    policy = OraclePolicy()
     summary = evaluate(
         policy, task, "seen", tmp_path, robot="franka", condition="empty", episodes=2
     )
@@ -42,7 +42,7 @@ def test_oracle_without_a_target_holds_still(tmp_path):
 def test_blind_planner_goes_for_a_random_candidate(tmp_path):
     """Perfect control without the language: it reaches some candidate every time, the
     instruction's target only by chance (the misses are grounding errors)."""
-    policy = PlannerBlindPolicy(seed=3)
+    policy = BlindPolicy(seed=3)
     task = "PickSpatial-InstructMove"
     summary = evaluate(policy, task, "seen", tmp_path, robot="franka", episodes=EPISODES)
     (group,) = summary["groups"]

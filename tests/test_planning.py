@@ -14,17 +14,13 @@ import torch
 
 from conftest import hand_spec, make_env
 from instructmove_ms.assets.affordances import grasp_affordances
-from instructmove_ms.episode import EpisodeSpec
+from instructmove_ms.episode import EpisodeSpec, actor_name
 from instructmove_ms.planning import (
-    ArmKinematics,
-    CollisionWorld,
-    JointLimits,
-    Rig,
+    PlanningScene,
     cartesian_path,
     densify,
     plan_joint_path,
     time_parametrize,
-    to_actions,
 )
 
 OPEN, CLOSED = 1.0, -1.0
@@ -49,6 +45,11 @@ def env():
     env.close()
 
 
+def to_actions(targets: np.ndarray, gripper: float) -> np.ndarray:
+    """Franka ``pd_joint_pos`` actions: each row of joint targets, then the gripper value."""
+    return np.hstack([targets, np.full((len(targets), 1), gripper)]).astype(np.float32)
+
+
 def _settle(env, q: np.ndarray, gripper: float, steps: int) -> dict:
     info = {}
     for _ in range(steps):
@@ -57,7 +58,7 @@ def _settle(env, q: np.ndarray, gripper: float, steps: int) -> dict:
 
 
 def test_fk_ik_round_trip(env):
-    kin = ArmKinematics.from_env(env)
+    kin = PlanningScene.from_env(env).kinematics()
     rng = np.random.default_rng(1)
     rest = np.asarray(REST[:7])
     solved = 0
@@ -77,8 +78,9 @@ def test_fk_ik_round_trip(env):
 
 
 def test_table_collision(env):
-    kin = ArmKinematics.from_env(env)
-    world = CollisionWorld.from_env(env, kin)
+    scene = PlanningScene.from_env(env)
+    kin = scene.kinematics()
+    world = scene.world(kin)
     rest = np.asarray(REST[:7])
     assert not world.in_collision(rest)
     down = rest.copy()
@@ -88,8 +90,9 @@ def test_table_collision(env):
 
 
 def test_planned_path_avoids_obstacle(env):
-    kin = ArmKinematics.from_env(env)
-    world = CollisionWorld.from_env(env, kin)
+    scene = PlanningScene.from_env(env)
+    kin = scene.kinematics()
+    world = scene.world(kin)
     start = kin.ik(sapien.Pose([0.45, 0.3, 0.25], [0, 1, 0, 0]), seeds=[np.asarray(REST[:7])])
     goal = kin.ik(sapien.Pose([0.45, -0.3, 0.25], [0, 1, 0, 0]), seeds=[np.asarray(REST[:7])])
     assert start is not None and goal is not None
@@ -101,7 +104,7 @@ def test_planned_path_avoids_obstacle(env):
     assert path is not None
     assert np.allclose(path[0], start) and np.allclose(path[-1], goal)
     assert not any(world.in_collision(q) for q in densify(path, 0.005))
-    limits = JointLimits.franka()
+    limits = scene.robot.limits
     targets = time_parametrize(path, limits)
     assert np.allclose(targets[-1], goal)
     velocity = np.diff(np.vstack([start, targets]), axis=0) * 30
@@ -128,8 +131,9 @@ def test_planned_pick_lifts_target(env):
     env.reset(options={"episode": _spec()})
     rest = np.asarray(REST[:7])
     _settle(env, rest, OPEN, 10)
-    kin = ArmKinematics.from_env(env)
-    world = CollisionWorld.from_env(env, kin)
+    scene = PlanningScene.from_env(env)
+    kin = scene.kinematics()
+    world = scene.world(kin)
     z0 = float(u.objects[0].pose.p[0, 2])
     best = None
     for sign in (1.0, -1.0):
@@ -140,14 +144,14 @@ def test_planned_pick_lifts_target(env):
             best = (float(np.abs(q_pre - rest).sum()), grasp, pre, q_pre)
     assert best is not None
     _, grasp, pre, q_pre = best
-    limits = JointLimits.franka()
+    limits = scene.robot.limits
     to_pre = plan_joint_path(world, rest, q_pre)
     assert to_pre is not None
     for link in world.gripper_links:
-        world.allow(link, "object_0")
+        world.allow(link, actor_name(0))
     descend = cartesian_path(kin, q_pre, grasp, world)
     assert descend is not None
-    world.attach("object_0", descend[-1])
+    world.attach(actor_name(0), descend[-1])
     world.allow("attached", "table")  # it stands on the table when the lift begins
     lift = cartesian_path(kin, descend[-1], sapien.Pose(grasp.p + [0, 0, 0.15], grasp.q), world)
     assert lift is not None
@@ -177,7 +181,7 @@ def test_planned_pick_lifts_target(env):
 
 
 def test_cartesian_path_partial(env):
-    kin = ArmKinematics.from_env(env)
+    kin = PlanningScene.from_env(env).kinematics()
     start = np.asarray(REST[:7])
     far = sapien.Pose(kin.fk(start).p + [0.0, 0.0, 1.5], kin.fk(start).q)
     assert cartesian_path(kin, start, far) is None
@@ -186,7 +190,7 @@ def test_cartesian_path_partial(env):
 
 
 def test_franka_rig_matches_to_actions(env):
-    rig = Rig.from_env(env)
+    rig = PlanningScene.from_env(env).rig()
     targets = np.tile(rig.start, (4, 1))
     assert np.array_equal(rig.actions(targets, CLOSED), to_actions(targets, CLOSED))
     assert rig.gripper.open == OPEN and rig.gripper.value(0.04) == pytest.approx(0.2)
@@ -202,8 +206,9 @@ def piperx():
 
 def test_piperx_arms_plan_separately(piperx):
     for arm in (0, 1):
-        kin = ArmKinematics.from_env(piperx, arm)
-        world = CollisionWorld.from_env(piperx, kin)
+        scene = PlanningScene.from_env(piperx)
+        kin = scene.kinematics(arm)
+        world = scene.world(kin)
         rest = kin.qpos[kin.arm]
         assert kin.dof == 6 and not world.in_collision(rest)
         goal = kin.ik(sapien.Pose(kin.fk(rest).p + [0.1, 0.0, -0.1], kin.fk(rest).q), [rest])
@@ -213,8 +218,9 @@ def test_piperx_arms_plan_separately(piperx):
 
 
 def test_piperx_world_holds_the_other_arm_as_obstacle(piperx):
-    kin = ArmKinematics.from_env(piperx, 1)
-    world = CollisionWorld.from_env(piperx, kin)
+    scene = PlanningScene.from_env(piperx)
+    kin = scene.kinematics(1)
+    world = scene.world(kin)
     assert {f"left_link{k}" for k in range(1, 7)} | {"left_base_link"} <= set(world.obstacles)
     assert "right_base_link" in world.obstacles and "right_link1" in world.links
     assert world.gripper_links >= {"right_finger1", "right_finger2", "right_gripper_base"}
@@ -224,7 +230,8 @@ def test_piperx_world_holds_the_other_arm_as_obstacle(piperx):
 
 
 def test_piperx_rig_actions_hold_the_other_arm(piperx):
-    left, right = Rig.from_env(piperx, 0), Rig.from_env(piperx, 1)
+    scene = PlanningScene.from_env(piperx)
+    left, right = scene.rig(0), scene.rig(1)
     targets = np.tile(right.start + 0.1, (3, 1))
     actions = right.actions(targets, right.gripper.closed)
     assert actions.shape == (3, 14) and actions.dtype == np.float32
@@ -239,11 +246,12 @@ _WALL_PLAN = """
 import sys, time
 import fcl, numpy as np, sapien
 from conftest import make_env
-from instructmove_ms.planning import ArmKinematics, CollisionWorld, plan_joint_path
+from instructmove_ms.planning import PlanningScene, plan_joint_path
 env = make_env()
 env.reset(seed=0)
-kin = ArmKinematics.from_env(env)
-world = CollisionWorld.from_env(env, kin)
+scene = PlanningScene.from_env(env)
+kin = scene.kinematics()
+world = scene.world(kin)
 rest = kin.qpos[kin.arm]
 start = kin.ik(sapien.Pose([0.45, 0.3, 0.25], [0, 1, 0, 0]), seeds=[rest])
 goal = kin.ik(sapien.Pose([0.45, -0.3, 0.25], [0, 1, 0, 0]), seeds=[rest])

@@ -6,7 +6,7 @@ import math
 
 import torch
 
-from instructmove_ms.stages import box_distance, first_index, latch_first
+from instructmove_ms.tasks.stages import box_distance, first_index, latch_first
 
 
 def test_box_distance_handles_rotation_and_several_points():

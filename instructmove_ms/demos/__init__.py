@@ -1,5 +1,7 @@
-"""Demo synthesis: planned pick rollouts recorded in ManiSkill's trajectory format."""
+"""Demo synthesis: planned rollouts recorded in ManiSkill's trajectory format."""
 
-from .pick import PICK_TASKS, plan_pick, rollout
+from .pick import plan_pick
+from .script import MotionScript
+from .synthesis import rollout, synthesize
 
-__all__ = ["PICK_TASKS", "plan_pick", "rollout"]
+__all__ = ["MotionScript", "plan_pick", "rollout", "synthesize"]

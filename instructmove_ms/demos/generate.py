@@ -32,12 +32,13 @@ from mani_skill.trajectory.merge_trajectory import merge_trajectories
 from mani_skill.utils.wrappers import RecordEpisode
 from tqdm import tqdm
 
+from instructmove_ms.files import write_json
+from instructmove_ms.splits import is_training_seed
 from instructmove_ms.tasks import TASKS
 from instructmove_ms.validation import check_choice
 
-from .synthesis import FAILURES, synthesize_scene, synthesizer
+from .synthesis import FAILURES, synthesize, synthesize_scene
 
-TRAIN_SEEDS = 10**9  # training seeds lie below this (evaluation sets use others)
 SHARD_SIZE = 5  # kept demos per shard
 SEED_BLOCK = 1000  # seeds reserved for each shard
 _DONE = "done"  # ends the progress queue
@@ -75,13 +76,6 @@ class Job:
     want: int
 
 
-def _write_json(path: Path, data) -> None:
-    """Write ``data`` as JSON atomically (a temporary file renamed over ``path``)."""
-    tmp = path.with_suffix(path.suffix + ".tmp")
-    tmp.write_text(json.dumps(data, indent=1))
-    os.replace(tmp, path)
-
-
 def _record(job: Job, folder: Path, progress: Progress) -> tuple[list[dict], Counter[str], int]:
     """Try the job's seeds until it has kept ``job.want`` demos, recording them into
     ``folder/<job.name>.h5``; returns the sidecar entries, the failure counts and the number
@@ -102,7 +96,6 @@ def _record(job: Job, folder: Path, progress: Progress) -> tuple[list[dict], Cou
         source_type="motion_planning",
         source_desc="instructmove_ms.demos: OMPL plans checked with fcl, run with pd_joint_pos",
     )
-    synthesize = synthesizer(job.task)
     episodes: list[dict] = []
     failures: Counter[str] = Counter()
     rollouts = 0
@@ -111,7 +104,7 @@ def _record(job: Job, folder: Path, progress: Progress) -> tuple[list[dict], Cou
             if len(episodes) == job.want:
                 break
             scene = synthesize_scene(
-                env, seed, synthesize, lambda: env.flush_trajectory(save=False)
+                env, seed, lambda: env.flush_trajectory(save=False), synthesize
             )
             rollouts += scene.rollouts
             failure = scene.failure
@@ -142,7 +135,7 @@ def run_job(job: Job, progress: Progress) -> dict:
     shards = job.out / "shards"
     with tempfile.TemporaryDirectory(dir=job.out) as tmp:
         episodes, failures, rollouts = _record(job, Path(tmp), progress)
-        _write_json(Path(tmp) / f"{job.name}.episodes.json", episodes)
+        write_json(Path(tmp) / f"{job.name}.episodes.json", episodes)
         for suffix in (".h5", ".json", ".episodes.json"):
             os.replace(Path(tmp) / f"{job.name}{suffix}", shards / f"{job.name}{suffix}")
     tried = len(episodes) + sum(failures.values())
@@ -171,8 +164,8 @@ def _pending(ledger: dict, task: str, robot: str, out: Path, n: int) -> list[Job
         if index not in done:
             want = min(size, remaining)
             seed = ledger["seed0"] + index * SEED_BLOCK
-            if seed + SEED_BLOCK > TRAIN_SEEDS:
-                raise ValueError(f"ran out of training seeds (below {TRAIN_SEEDS})")
+            if not is_training_seed(seed + SEED_BLOCK - 1):
+                raise ValueError(f"seed block {seed}.. leaves the training seeds")
             name = f"{task}_{robot}_{index:05d}"
             jobs.append(Job(task, robot, out, index, name, seed, want))
             remaining -= want
@@ -222,7 +215,7 @@ def generate(
         def finished(entry: dict) -> None:
             ledger["shards"].append(entry)
             ledger["shards"].sort(key=lambda s: s["index"])
-            _write_json(ledger_path, ledger)
+            write_json(ledger_path, ledger)
 
         _run(jobs, workers, tick, finished)
     path = out / f"{stem}.h5"
@@ -276,6 +269,6 @@ def _merge(out: Path, stem: str, names: list[str]) -> None:
     sidecar = []
     for name in names:
         sidecar += json.loads((out / "shards" / f"{name}.episodes.json").read_text())
-    _write_json(
+    write_json(
         out / f"{stem}.episodes.json", [{"episode_id": k, **e} for k, e in enumerate(sidecar)]
     )

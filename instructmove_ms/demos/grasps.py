@@ -12,7 +12,8 @@ import numpy as np
 import sapien
 
 from instructmove_ms.assets.affordances import enveloping_grasps, grasp_affordances
-from instructmove_ms.planning import CollisionWorld, Rig
+from instructmove_ms.planning import CollisionWorld, PlanningScene, Rig
+from instructmove_ms.planning.scene import TABLE
 
 #: Leans (rad) of the approach away from the arm's shoulder, tried in this order: a far or
 #: high grasp that the hand cannot reach pointing straight down it reaches leaned.
@@ -56,14 +57,6 @@ class Candidate:
     cost: float
 
 
-def target_box(env) -> tuple[sapien.Pose, np.ndarray, np.ndarray]:
-    """The target's pose (base frame) and its box's (lowest, highest) corners in its frame."""
-    u = env.unwrapped
-    spec = u.episode
-    lo, hi = u.catalog[spec.objects[spec.target].uuid].bounds
-    return u.agent.robot.pose.sp.inv() * u.objects[spec.target].pose.sp, lo, hi
-
-
 def box_corners(lo, hi) -> np.ndarray:
     """The 8 corners (8, 3) of the box with lowest and highest corners ``lo`` and ``hi``."""
     return np.array(list(product(*zip(lo, hi, strict=True))), dtype=float)
@@ -76,16 +69,13 @@ def box_top(pose: sapien.Pose, lo: np.ndarray, hi: np.ndarray) -> float:
     return float((box_corners(lo, hi) @ rotation.T)[:, 2].max() + pose.p[2])
 
 
-def grasp_frames(env, max_width: float) -> list[GraspFrame]:
+def grasp_frames(scene: PlanningScene, max_width: float) -> list[GraspFrame]:
     """The target's grasp affordances for fingers opening ``max_width``, each with both
     closing-axis signs, as given and turned by ``YAWS`` (the width across a turned bar
     grows as 1 / cos)."""
-    u = env.unwrapped
-    spec = u.episode
-    inst = u.catalog[spec.objects[spec.target].uuid]
-    obj = u.agent.robot.pose.sp.inv() * u.objects[spec.target].pose.sp
+    inst = scene.objects[scene.target].instance
+    obj, lo, hi = scene.box(scene.target)
     rot = obj.to_transformation_matrix()[:3, :3]
-    lo, hi = inst.bounds
     middle = (obj * sapien.Pose(0.5 * (lo + hi))).p
     whole = set(enveloping_grasps(inst, max_opening=max_width))
     frames = []
@@ -146,6 +136,11 @@ def leaned(frame: sapien.Pose, shoulder: np.ndarray, angle: float) -> list[sapie
     return [lean_away(frame, a, shoulder, angle) for a in (closing, across(frame, shoulder))]
 
 
+def below_hand(scene: PlanningScene) -> set[str]:
+    """What a hand grasping the target may touch: the table and the target."""
+    return {TABLE, scene.objects[scene.target].name}
+
+
 def touches_only(contacts: set[tuple[str, str]], allowed: set[str]) -> bool:
     """Every pair of ``contacts`` (a collision world's) involves one of ``allowed``."""
     return all(allowed.intersection(pair) for pair in contacts)
@@ -171,7 +166,7 @@ def opening(width: float) -> float:
     return width + 2.0 * FINGER_CLEARANCE
 
 
-def candidates(env, rig: Rig) -> Iterator[Candidate]:
+def candidates(scene: PlanningScene, rig: Rig) -> Iterator[Candidate]:
     """Grasp frames (``grasp_frames``) leaned by each of ``LEANS`` in turn (``leaned``)
     whose pre-grasp (the farthest of ``PRE_GRASP`` with one whose fingertips clear the
     target by ``PRE_CLEARANCE``) has a collision-free IK solution from which the hand,
@@ -180,17 +175,17 @@ def candidates(env, rig: Rig) -> Iterator[Candidate]:
     neighbour lying close); within a lean, the cheapest first. A container's enveloping
     grasps go first at every lean, then the others. Each lean is solved only when asked
     for."""
-    frames = grasp_frames(env, rig.gripper.max_width)
+    frames = grasp_frames(scene, rig.gripper.max_width)
     worlds: dict[float, CollisionWorld] = {}
-    clear = box_top(*target_box(env)) + PRE_CLEARANCE
+    clear = box_top(*scene.box(scene.target)) + PRE_CLEARANCE
     start = rig.start
-    below = {"table", f"object_{env.unwrapped.episode.target}"}
+    below = below_hand(scene)
     for tier, lean in product((True, False), LEANS):
         found = []
         for frame in (f for f in frames if f.enveloping == tier):
             width = round(opening(frame.width), 3)
             if width not in worlds:
-                worlds[width] = CollisionWorld.from_env(env, rig.opened(width).kin)
+                worlds[width] = scene.world(rig.opened(width).kin)
             for grasp in leaned(frame.pose, rig.shoulder, lean):
                 tcp = grasp * rig.gripper.tcp_in_grasp
                 for distance in PRE_GRASP:

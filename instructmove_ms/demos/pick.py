@@ -14,12 +14,11 @@ from itertools import islice
 
 import numpy as np
 import sapien
-import torch
 
 from instructmove_ms.planning import (
     CollisionWorld,
+    PlanningScene,
     Rig,
-    arm_order,
     cartesian_path,
     plan_joint_path,
 )
@@ -28,16 +27,15 @@ from .grasps import (
     Candidate,
     across,
     back_off,
+    below_hand,
     box_top,
     candidates,
     lean_away,
     opening,
-    target_box,
     touches_only,
 )
-from .timing import Segment, fitted, hold, steps_left
+from .timing import Segment, fitted, hold
 
-PICK_TASKS = ("PickCategory-InstructMove", "PickAttribute-InstructMove", "PickSpatial-InstructMove")
 LIFT = 0.15  # metres the object is lifted where the arm reaches that high
 MIN_LIFT = 0.06  # and at least this much
 #: Leans (rad) added away from the shoulder along the lift, tried in turn: leaning helps a
@@ -54,23 +52,24 @@ MAX_CANDIDATES = 30  # grasp candidates tried per arm
 #: Metres the fingertips reach at least below the target's top (a flat object grasped with a
 #: leaned hand, whose fingers cannot go lower without touching the table).
 MIN_OVERLAP = 0.006
-STAGES = ("reach", "lift", "success")
 
 
 def _above(pose: sapien.Pose, dz: float) -> sapien.Pose:
     return sapien.Pose(pose.p + np.array([0.0, 0.0, dz]), pose.q)
 
 
-def _grasp_height(env, rig: Rig, world: CollisionWorld, cand: Candidate) -> sapien.Pose | None:
+def _grasp_height(
+    scene: PlanningScene, rig: Rig, world: CollisionWorld, cand: Candidate
+) -> sapien.Pose | None:
     """The candidate's grasp raised by the least multiple of ``RAISE_STEP`` that keeps the
     hand off the table and the target (a finger inside a low container), or None where that
     configuration touches anything else, the TCP would no longer reach the target's box
     (``REACH_MARGIN``) or the fingertips would end above both the affordance's grasp centre
     and ``MIN_OVERLAP`` below the target's top."""
-    pose, lo, hi = target_box(env)
+    pose, lo, hi = scene.box(scene.target)
     top = box_top(pose, lo, hi)
-    reach = env.unwrapped.task.thresholds.reach - REACH_MARGIN
-    below = {"table", f"object_{env.unwrapped.episode.target}"}
+    reach = scene.reach - REACH_MARGIN
+    below = below_hand(scene)
     grasp = cand.tcp
     while True:
         local = (pose.inv() * grasp).p
@@ -89,18 +88,19 @@ def _grasp_height(env, rig: Rig, world: CollisionWorld, cand: Candidate) -> sapi
         grasp = _above(grasp, RAISE_STEP)
 
 
-def _grasp_and_lift(env, rig: Rig, cand: Candidate) -> tuple[np.ndarray, np.ndarray] | None:
+def _grasp_and_lift(
+    scene: PlanningScene, rig: Rig, cand: Candidate
+) -> tuple[np.ndarray, np.ndarray] | None:
     """(descent, lift) joint paths from the candidate's pre-grasp, or None."""
     kin = rig.kin
-    world = CollisionWorld.from_env(env, kin)
-    grasp = _grasp_height(env, rig, world, cand)
+    world = scene.world(kin)
+    grasp = _grasp_height(scene, rig, world, cand)
     if grasp is None:
         return None
     descend = cartesian_path(kin, cand.q_pre, grasp, world)
     if descend is None:
         return None
-    target = f"object_{env.unwrapped.episode.target}"
-    world.attach(target, descend[-1])
+    world.attach(scene.objects[scene.target].name, descend[-1])
     world.allow("attached", "table")  # it stands on the table when the lift begins
     lift = _lift(rig, world, descend[-1], grasp)
     return None if lift is None else (descend, lift)
@@ -124,7 +124,7 @@ def _lift(rig: Rig, world: CollisionWorld, q: np.ndarray, grasp: sapien.Pose) ->
 
 
 def _arm_plans(
-    env, rig: Rig, free: CollisionWorld, ranked: list[Candidate], steps: int
+    scene: PlanningScene, rig: Rig, free: CollisionWorld, ranked: list[Candidate], steps: int
 ) -> Iterator[np.ndarray]:
     """The pick actions with ``rig``'s arm for each of the ``ranked`` candidates that has a
     collision-free plan in ``free`` (the arm's world), in order, fitted into ``steps``. The
@@ -135,7 +135,7 @@ def _arm_plans(
         planned = False
         for cand in ranked:
             width = rig.gripper.max_width if wide else opening(cand.width)
-            paths = _grasp_and_lift(env, rig.opened(width), cand)
+            paths = _grasp_and_lift(scene, rig.opened(width), cand)
             if paths is None:
                 continue
             to_pre = plan_joint_path(free, start, cand.q_pre)
@@ -160,46 +160,34 @@ def _arm_plans(
 
 
 def plan_pick(
-    env, arms: Sequence[int] | None = None, steps: int | None = None, skip: int = 0
+    scene: PlanningScene,
+    arms: Sequence[int] | None = None,
+    steps: int | None = None,
+    skip: int = 0,
 ) -> np.ndarray | str:
-    """``pd_joint_pos`` actions that pick up the episode's target from the env's current
-    state, or the failure reason: ``"no_ik"`` (no collision-free pre-grasp configuration for
+    """``pd_joint_pos`` actions that pick up the scene's target from its observed state, or
+    the failure reason: ``"no_ik"`` (no collision-free pre-grasp configuration for
     any grasp with any arm) or ``"no_plan"`` (no collision-free path for any grasp with one,
     or fewer than ``skip + 1`` plans). ``arms`` (default: all) are tried nearest the target
-    first; for an episode with a goal receptacle, nearest the middle between both, so that
-    the arm can carry the target there. Each arm's grasp candidates go cheapest first; the
+    first; for a scene with a destination, nearest the middle between both, so that the arm
+    can carry the target there. Each arm's grasp candidates go cheapest first; the
     first ``skip`` plans are passed over (another grasp after one that slipped). The motions
     are sped up where needed to fit into ``steps`` (default: the rest of the horizon)."""
-    u = env.unwrapped
-    spec, base = u.episode, u.agent.robot.pose.sp.inv()
-    steps = steps_left(env) if steps is None else steps
-    point = (base * u.objects[spec.target].pose.sp).p
-    if spec.goal_destination >= 0:
-        point = (point + (base * u.objects[spec.goal_destination].pose.sp).p) / 2
+    steps = scene.steps_left if steps is None else steps
+    point = scene.pose(scene.target).p
+    if scene.destination >= 0:
+        point = (point + scene.pose(scene.destination).p) / 2
     reason = "no_ik"
-    for arm in arm_order(env, point):
+    for arm in scene.arm_order(point):
         if arms is not None and arm not in arms:
             continue
-        rig = Rig.from_env(env, arm)
-        free = CollisionWorld.from_env(env, rig.kin)
-        ranked = list(islice(candidates(env, rig), MAX_CANDIDATES))
+        rig = scene.rig(arm)
+        free = scene.world(rig.kin)
+        ranked = list(islice(candidates(scene, rig), MAX_CANDIDATES))
         if ranked:
             reason = "no_plan"
-        for actions in _arm_plans(env, rig, free, ranked, steps):
+        for actions in _arm_plans(scene, rig, free, ranked, steps):
             if skip == 0:
                 return actions
             skip -= 1
     return reason
-
-
-def rollout(env, actions: np.ndarray, stages: tuple[str, ...] = STAGES) -> list[dict[str, bool]]:
-    """Step ``env`` through ``actions``; returns each step's ``stages`` flags (default: reach,
-    lift, success) of the single sub-scene; the last one is the outcome. Stops early at
-    truncation."""
-    flags = []
-    for action in actions:
-        _, _, _, truncated, info = env.step(torch.from_numpy(action)[None])
-        flags.append({k: bool(info[k][0]) for k in stages})
-        if bool(truncated):
-            break
-    return flags

@@ -17,20 +17,18 @@ from dataclasses import dataclass
 
 import numpy as np
 import sapien
-import torch
 
 from instructmove_ms.planning import (
     CollisionWorld,
+    PlanningScene,
     Rig,
     cartesian_path,
     plan_joint_path,
 )
 
 from .grasps import across, box_corners, lean_away
-from .timing import Segment, fitted, hold, steps_left
+from .timing import Segment, fitted, hold
 
-#: Per-step stage flags of a place rollout (PlaceA2B's ``info`` keys; success is place).
-PLACE_STAGES = ("reach_pick", "lift_pick", "reach_place", "place", "success")
 CLEARANCE = 0.01  # metres between the object's bottom and the receptacle floor at release
 HEIGHT_STEP = 0.01  # release heights are tried upwards from the lowest, this far apart
 ABOVE_RIM = 0.04  # the pre-place pose holds the object's bottom this far above the rim
@@ -81,12 +79,10 @@ class Release:
     cost: float
 
 
-def goal_interior(env) -> Interior:
-    """The goal receptacle's interior at the receptacle's current pose."""
-    u = env.unwrapped
-    spec = u.episode
-    region = u.catalog[spec.objects[spec.goal_destination].uuid].interior
-    pose = u.agent.robot.pose.sp.inv() * u.objects[spec.goal_destination].pose.sp
+def goal_interior(scene: PlanningScene) -> Interior:
+    """The destination's interior at the destination's observed pose."""
+    region = scene.objects[scene.destination].instance.interior
+    pose = scene.pose(scene.destination)
     frame = (pose * sapien.Pose(region.center)).to_transformation_matrix()
     return Interior(frame, np.asarray(region.half), region.height)
 
@@ -150,15 +146,14 @@ def _fits(interior: Interior, rotation: np.ndarray, corners: np.ndarray) -> bool
     return bool(np.all(margin >= FIT_MARGIN))
 
 
-def releases(env, rig: Rig, world: CollisionWorld, interior: Interior) -> list[Release]:
+def releases(
+    scene: PlanningScene, rig: Rig, world: CollisionWorld, interior: Interior
+) -> list[Release]:
     """The lowest collision-free release of every orientation, at the least of
     ``PLACE_LEANS`` that has one, best first: the footprint fits, then the object stands
     upright, then the lowest, then the least joint motion."""
-    u = env.unwrapped
-    spec = u.episode
-    lo, hi = u.catalog[spec.objects[spec.target].uuid].bounds
+    held, lo, hi = scene.box(scene.target)
     corners = box_corners(lo, hi)
-    held = u.agent.robot.pose.sp.inv() * u.objects[spec.target].pose.sp
     grip_inv = held.inv() * rig.kin.fk(rig.start)  # the TCP in the object's frame
     heights = np.arange(CLEARANCE, interior.height + ABOVE_RIM, HEIGHT_STEP)
     grip = grip_inv.to_transformation_matrix()[:3, :3]
@@ -245,14 +240,6 @@ def place_paths(
     return None if back is None else (to_pre, descend, retreat, back)
 
 
-def holding_arm(env) -> int:
-    """The arm whose TCP is nearest the target (the one that picked it)."""
-    u = env.unwrapped
-    tcps = u.agent.tcp_positions()[0]
-    target = u.objects[u.episode.target].pose.p[0]
-    return int(torch.linalg.norm(tcps - target, dim=1).argmin())
-
-
 def segments(rig: Rig, paths: Paths) -> list[Segment]:
     """The place motions of ``paths``: to the pre-place pose and the descent holding, the
     fingers opening ``RELEASE_GAP`` off the object, the motions after with them so."""
@@ -267,10 +254,10 @@ def segments(rig: Rig, paths: Paths) -> list[Segment]:
     ]
 
 
-def held_world(env, rig: Rig) -> CollisionWorld:
+def held_world(scene: PlanningScene, rig: Rig) -> CollisionWorld:
     """The collision world of ``rig`` with the target attached to its hand."""
-    world = CollisionWorld.from_env(env, rig.kin)
-    target = f"object_{env.unwrapped.episode.target}"
+    world = scene.world(rig.kin)
+    target = scene.objects[scene.target].name
     for link in world.gripper_links:
         world.allow(link, target)
     world.attach(target, rig.start)
@@ -278,14 +265,14 @@ def held_world(env, rig: Rig) -> CollisionWorld:
 
 
 def plan_release(
-    env, rig: Rig, interior: Interior, steps: int, home: np.ndarray | None = None
+    scene: PlanningScene, rig: Rig, interior: Interior, steps: int, home: np.ndarray | None = None
 ) -> np.ndarray | str:
     """Actions that set the held target down in ``interior`` (see ``place_paths`` for
     ``home``), fitted into ``steps`` where the speed-ups allow, or the failure reason:
     ``"no_ik"`` (no collision-free release configuration) or ``"no_plan"`` (no
     collision-free path to the ``MAX_RELEASES`` best)."""
-    world = held_world(env, rig)
-    found = releases(env, rig, world, interior)
+    world = held_world(scene, rig)
+    found = releases(scene, rig, world, interior)
     if not found:
         return "no_ik"
     for release in found[:MAX_RELEASES]:
@@ -295,9 +282,9 @@ def plan_release(
     return "no_plan"
 
 
-def plan_place(env) -> np.ndarray | str:
-    """``pd_joint_pos`` actions that place the held target in the goal receptacle from the
-    env's current state, or the failure reason (``plan_release``). The motion is sped up
+def plan_place(scene: PlanningScene) -> np.ndarray | str:
+    """``pd_joint_pos`` actions that place the held target in the destination from the
+    scene's observed state, or the failure reason (``plan_release``). The motion is sped up
     where needed to leave ``SETTLE_STEPS`` of the episode's horizon."""
-    rig = Rig.from_env(env, holding_arm(env))
-    return plan_release(env, rig, goal_interior(env), steps_left(env) - SETTLE_STEPS)
+    rig = scene.rig(scene.holding_arm())
+    return plan_release(scene, rig, goal_interior(scene), scene.steps_left - SETTLE_STEPS)

@@ -10,10 +10,9 @@ from __future__ import annotations
 import numpy as np
 import sapien
 
-from instructmove_ms.planning import Rig
+from instructmove_ms.planning import PlanningScene
 
-from .place import PLACE_RESERVE, SETTLE_STEPS, Interior, holding_arm, plan_release
-from .timing import steps_left
+from .place import PLACE_RESERVE, SETTLE_STEPS, Interior, plan_release
 
 #: Spots (base frame, metres): along the table (x) and across it (y, towards the other arm
 #: from the middle between the shoulders), tried nearest ``SPOT`` first.
@@ -25,18 +24,15 @@ GAP = 0.03  # metres between the target's footprint (a circle round its box) and
 RESERVE = 130 + PLACE_RESERVE
 
 
-def spots(env, holder: int) -> list[np.ndarray]:
+def spots(scene: PlanningScene, holder: int) -> list[np.ndarray]:
     """Free spots (x, y on the table, base frame) for the target, best first: the circle
     round the target's box keeps ``GAP`` from every other object's box."""
-    u = env.unwrapped
-    spec = u.episode
-    base = u.agent.robot.pose.sp.inv()
-    lo, hi = (np.asarray(b) for b in u.catalog[spec.objects[spec.target].uuid].bounds)
+    lo, hi = (np.asarray(b) for b in scene.objects[scene.target].instance.bounds)
     clearance = 0.5 * float(np.linalg.norm((hi - lo)[:2])) + GAP
     boxes = [
-        (base * obj.pose.sp, *(np.asarray(b) for b in u.catalog[spec.objects[k].uuid].bounds))
-        for k, obj in enumerate(u.objects)
-        if k != spec.target
+        (scene.pose(k), *(np.asarray(b) for b in obj.instance.bounds))
+        for k, obj in enumerate(scene.objects)
+        if k != scene.target
     ]
 
     def free(spot: np.ndarray) -> bool:
@@ -55,28 +51,21 @@ def spots(env, holder: int) -> list[np.ndarray]:
     return sorted(filter(free, grid), key=lambda s: float(np.linalg.norm(s - preferred)))
 
 
-def plan_relay(env) -> np.ndarray | str:
+def plan_relay(scene: PlanningScene) -> np.ndarray | str:
     """``pd_joint_pos`` actions that set the held target down on the first of ``spots`` that
     works and bring the holding arm back to rest, fitted into the horizon less ``RESERVE``
     steps, or the failure reason of the last spot tried (``"no_ik"`` where none is free)."""
-    u = env.unwrapped
-    holder = holding_arm(env)
-    rig = Rig.from_env(env, holder)
-    home = np.asarray(u.agent.keyframes["rest"].qpos, dtype=float)[rig.kin.arm]
+    holder = scene.holding_arm()
+    rig = scene.rig(holder)
+    home = scene.robot.rest[rig.kin.arm]
     reason = "no_ik"
-    for x, y in spots(env, holder):
+    for x, y in spots(scene, holder):
         frame = np.eye(4)
         frame[:2, 3] = x, y  # the table's top is the base frame's z = 0
         table = Interior(frame, np.array([1.0, 1.0]), 0.0)
-        steps = max(steps_left(env) - RESERVE, SETTLE_STEPS)
-        actions = plan_release(env, rig, table, steps, home=home)
+        steps = max(scene.steps_left - RESERVE, SETTLE_STEPS)
+        actions = plan_release(scene, rig, table, steps, home=home)
         if not isinstance(actions, str):
             return actions
         reason = actions
     return reason
-
-
-def other_arm(env) -> list[int]:
-    """The arms not holding the target (none for a single arm)."""
-    arms = range(len(env.unwrapped.agent.tcp_links))
-    return [k for k in arms if k != holding_arm(env)]

@@ -8,12 +8,14 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass
-from functools import partial
 
-from .pick import PICK_TASKS, STAGES, rollout
-from .place import PLACE_STAGES, SETTLE_STEPS
+import numpy as np
+import torch
+
+from instructmove_ms.planning import PlanningScene
+
+from .place import SETTLE_STEPS
 from .script import MotionScript
-from .timing import steps_left
 
 #: Failure reasons, counted per run: no IK solution for any grasp or place pose, no
 #: collision-free path, the object left the gripper, the object missed the receptacle.
@@ -23,39 +25,50 @@ FAILURES = ("no_ik", "no_plan", "grasp_slipped", "place_missed")
 GRASP_TRIALS = 3
 
 Flags = list[dict[str, bool]]
-Synthesizer = Callable[..., tuple[Flags, str | None]]
+Synthesizer = Callable[[object, int], tuple[Flags, str | None]]
 
 
-def synthesize(env, variant: int = 0, stages: tuple[str, ...] = STAGES) -> tuple[Flags, str | None]:
+def synthesize(env, variant: int = 0) -> tuple[Flags, str | None]:
     """Play the episode's ``MotionScript`` (one pick attempt, passing over ``variant`` grasp
-    plans) within the horizon; returns the ``stages`` flags of every step and None where the
-    task's own success check passes at the end, else the failure reason: ``"no_ik"`` /
-    ``"no_plan"`` (a pick, relay or place found none), ``"grasp_slipped"`` (not held after a
-    lift) or ``"place_missed"`` (all executed, the target does not rest in the receptacle).
-    A dropped object gets up to ``SETTLE_STEPS`` to come to rest."""
-    script, flags, last = MotionScript(variant=variant), [], None
+    plans) within the horizon; returns the family's per-step stage flags
+    (``StageSchema.flags``) and None where the task's own success check passes at the end,
+    else the failure reason: ``"no_ik"`` / ``"no_plan"`` (a pick, relay or place found
+    none), ``"grasp_slipped"`` (not held after a lift, or never placed in an episode
+    without a receptacle) or ``"place_missed"`` (all executed, the target does not rest in
+    the receptacle). A dropped object gets up to ``SETTLE_STEPS`` to come to rest."""
+    scene = PlanningScene.from_env(env)
+    script, flags, last = MotionScript(scene, variant=variant), [], None
     while steps_left(env) > 0 and (motion := script.next(env)) is not None:
         if isinstance(motion, str):
             return flags, motion
-        flags += rollout(env, motion[: steps_left(env)], stages)
+        flags += rollout(env, motion[: steps_left(env)])
         last = motion[-1:]
     for _ in range(min(SETTLE_STEPS, steps_left(env))):
         if last is None or flags[-1]["success"]:
             break
-        flags += rollout(env, last, stages)
+        flags += rollout(env, last)
     if flags and flags[-1]["success"]:
         return flags, None
-    return flags, "place_missed" if "place" in stages else "grasp_slipped"
+    return flags, "place_missed" if scene.destination >= 0 else "grasp_slipped"
 
 
-def family_stages(task: str) -> tuple[str, ...]:
-    """The per-step stage flags recorded for ``task``'s family."""
-    return STAGES if task in PICK_TASKS else PLACE_STAGES
+def steps_left(env) -> int:
+    """Steps left in the episode's horizon."""
+    u = env.unwrapped
+    return u.task.max_episode_steps - int(u.elapsed_steps[0])
 
 
-def synthesizer(task: str) -> Synthesizer:
-    """The synthesizer of ``task``'s family."""
-    return partial(synthesize, stages=family_stages(task))
+def rollout(env, actions: np.ndarray) -> list[dict[str, bool]]:
+    """Step ``env`` through ``actions``; returns each step's stage flags (the family's
+    ``StageSchema.flags``) of the single sub-scene; the last one is the outcome. Stops early
+    at truncation."""
+    stages, flags = env.unwrapped.task.stages.flags, []
+    for action in actions:
+        _, _, _, truncated, info = env.step(torch.from_numpy(action)[None])
+        flags.append({k: bool(info[k][0]) for k in stages})
+        if bool(truncated):
+            break
+    return flags
 
 
 @dataclass(frozen=True)
@@ -70,7 +83,10 @@ class SceneOutcome:
 
 
 def synthesize_scene(
-    env, seed: int, synthesize: Synthesizer, discard: Callable[[], None] = lambda: None
+    env,
+    seed: int,
+    discard: Callable[[], None] = lambda: None,
+    synthesizer: Synthesizer = synthesize,
 ) -> SceneOutcome:
     """Reset ``env`` to ``seed`` and synthesize; a rollout that fails after moving is
     discarded (``discard``, e.g. dropping a recorder's buffer) and the scene is reset and
@@ -79,7 +95,7 @@ def synthesize_scene(
     rollouts = 0
     for variant in range(GRASP_TRIALS):
         env.reset(seed=seed)
-        flags, failure = synthesize(env, variant)
+        flags, failure = synthesizer(env, variant)
         rollouts += bool(flags)
         if failure is None or not flags or variant == GRASP_TRIALS - 1:
             break

@@ -42,9 +42,3 @@ def fitted(rig: Rig, segments: list[Segment], steps: int) -> np.ndarray:
         if len(actions) <= steps:
             break
     return actions
-
-
-def steps_left(env) -> int:
-    """Steps left in the episode's horizon."""
-    u = env.unwrapped
-    return u.task.max_episode_steps - int(u.elapsed_steps[0])

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from importlib import metadata as importlib_metadata
 
-from .replay import Rig
+from .replay import RobotParts
 from .source import EpisodeSource, Trajectory
 
 FORMAT = "instructmove-episode-mcap/1"
@@ -29,7 +29,7 @@ def software_versions() -> dict[str, str | None]:
     return versions
 
 
-def episode_metadata(traj: Trajectory, ep: EpisodeSource, rig: Rig, info: dict) -> dict:
+def episode_metadata(traj: Trajectory, ep: EpisodeSource, rig: RobotParts, info: dict) -> dict:
     """Everything about the episode that is not a time series: spec, instruction, objects,
     outcome (recorded success and per-step stage flags, the replayed last step's info and its
     stage score), the robot's parts and the software versions."""

@@ -12,6 +12,8 @@ from mcap.reader import make_reader
 from mcap_protobuf.decoder import DecoderFactory
 
 from instructmove_ms.episode import EpisodeSpec
+from instructmove_ms.family import StageSchema
+from instructmove_ms.tasks import TASKS
 
 from . import schemas
 
@@ -117,7 +119,9 @@ def read_episode(path: str | Path) -> McapEpisode:
     )
 
 
-def score_inputs(episode: McapEpisode) -> tuple[EpisodeSpec, dict]:
-    """``(spec, info)`` for :func:`instructmove_ms.metrics.score_episode`: the episode spec
-    and the info of its last step, as the replay during export computed it."""
-    return EpisodeSpec.from_dict(episode.metadata["spec"]), episode.metadata["info"]
+def score_inputs(episode: McapEpisode) -> tuple[EpisodeSpec, dict, StageSchema]:
+    """``(spec, info, stages)`` for :func:`instructmove_ms.metrics.score_episode`: the
+    episode spec, the info of its last step as the replay during export computed it, and
+    its family's stage schema."""
+    spec = EpisodeSpec.from_dict(episode.metadata["spec"])
+    return spec, episode.metadata["info"], TASKS[episode.metadata["env_id"]].stages

@@ -33,19 +33,19 @@ class CameraFrame:
 
 @dataclass(frozen=True)
 class Frame:
-    """What one recorded env state shows; joint arrays follow :attr:`Rig.joint_names`."""
+    """What one recorded env state shows; joint arrays follow :attr:`RobotParts.joint_names`."""
 
     step: int
     qpos: np.ndarray
     qvel: np.ndarray
     effort: np.ndarray
-    links: np.ndarray  # (L, 7) world poses of :attr:`Rig.link_names`
+    links: np.ndarray  # (L, 7) world poses of :attr:`RobotParts.link_names`
     objects: np.ndarray  # (K, 7) world poses of the episode's objects, in spec order
     cameras: dict[str, CameraFrame]
 
 
 @dataclass(frozen=True)
-class Rig:
+class RobotParts:
     """Names of the robot's parts, fixed for an env."""
 
     joint_names: tuple[str, ...]
@@ -113,10 +113,10 @@ class Replayer:
     def _u(self):
         return self.env.unwrapped
 
-    def rig(self) -> Rig:
+    def rig(self) -> RobotParts:
         agent = self._u.agent
         names = [j.name for j in agent.robot.get_active_joints()]
-        return Rig(
+        return RobotParts(
             joint_names=tuple(names),
             arms=arm_joints(agent, names),
             link_names=tuple(link.name for link in agent.robot.get_links()),
@@ -153,7 +153,7 @@ class Replayer:
         )
         return np.clip(force, -limit, limit)
 
-    def start(self, ep: EpisodeSource) -> tuple[Rig, dict, np.ndarray]:
+    def start(self, ep: EpisodeSource) -> tuple[RobotParts, dict, np.ndarray]:
         """Reset to ``ep`` and step its actions from its restored states: returns the rig,
         the last step's info (plain values) and the drive effort at every state."""
         self.env.reset(**ep.reset_kwargs)

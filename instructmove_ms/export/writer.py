@@ -8,9 +8,7 @@ failed conversion leaves no partial file.
 from __future__ import annotations
 
 import json
-import os
-from collections.abc import Iterable, Iterator
-from contextlib import contextmanager
+from collections.abc import Iterable
 from pathlib import Path
 
 import cv2
@@ -27,20 +25,10 @@ from foxglove_schemas_protobuf.Quaternion_pb2 import Quaternion
 from foxglove_schemas_protobuf.Vector3_pb2 import Vector3
 from mcap_protobuf.writer import Writer
 
+from instructmove_ms.files import atomic_path
+
 from . import schemas
-from .replay import CameraFrame, Frame, Rig
-
-
-@contextmanager
-def atomic_path(path: Path) -> Iterator[Path]:
-    """A temporary path next to ``path``, renamed to it if the block succeeds and removed
-    otherwise."""
-    tmp = path.with_name(f".{path.name}.part")
-    try:
-        yield tmp
-        os.replace(tmp, path)
-    finally:
-        tmp.unlink(missing_ok=True)
+from .replay import CameraFrame, Frame, RobotParts
 
 
 def sim_time_ns(step: int, control_freq: float) -> int:
@@ -107,7 +95,7 @@ def _camera_messages(ns: int, name: str, cam: CameraFrame, jpeg_quality: int):
     yield schemas.camera_topic(name, "pose"), _transform(ns, frame_id, cam.pose)
 
 
-def _frame_messages(frame: Frame, rig: Rig, ns: int, jpeg_quality: int):
+def _frame_messages(frame: Frame, rig: RobotParts, ns: int, jpeg_quality: int):
     for arm, index in rig.arms.items():
         msg = JointStates(
             joints=[
@@ -162,7 +150,7 @@ def _episode_message(metadata: dict):
 def write_episode(
     path: Path,
     metadata: dict,
-    rig: Rig,
+    rig: RobotParts,
     actions: np.ndarray,
     frames: Iterable[Frame],
     jpeg_quality: int = 90,

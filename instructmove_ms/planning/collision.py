@@ -2,13 +2,15 @@
 
 Geometry comes from the SAPIEN physx collision shapes of the robot's links and of the scene
 actors (boxes, spheres, capsules, cylinders, convex and triangle meshes; planes such as the
-floor are left out). Poses are in the robot's base frame.
+floor are left out), converted once per episode by the planning scene; each world poses its
+own collision objects of that shared geometry. Poses are in the robot's base frame.
 """
 
 from __future__ import annotations
 
 from collections.abc import Iterable
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import fcl
 import numpy as np
@@ -16,6 +18,9 @@ import sapien
 import sapien.physx as physx
 
 from .kinematics import ArmKinematics
+
+if TYPE_CHECKING:
+    from .robot import RobotModel
 
 #: SAPIEN's capsules and cylinders run along local x, fcl's along local z.
 _X_TO_Z = sapien.Pose(q=[np.sqrt(0.5), 0.0, np.sqrt(0.5), 0.0])
@@ -32,6 +37,8 @@ class Shape:
 
 
 Geoms = list[Shape]
+#: A body's collision geometry: each fcl geometry with its pose (4x4) in the body's frame.
+Geometry = list[tuple[fcl.CollisionGeometry, np.ndarray]]
 
 
 def shape_geometry(shape: physx.PhysxCollisionShape) -> tuple[fcl.CollisionGeometry, sapien.Pose]:
@@ -61,27 +68,28 @@ def shape_geometry(shape: physx.PhysxCollisionShape) -> tuple[fcl.CollisionGeome
     raise TypeError(f"unsupported collision shape {type(shape).__name__}")
 
 
-def _body_geoms(shapes: Iterable[physx.PhysxCollisionShape]) -> Geoms:
+def body_geometry(shapes: Iterable[physx.PhysxCollisionShape]) -> Geometry:
+    """The fcl geometry of a body's collision ``shapes`` (planes left out)."""
     out = []
     for shape in shapes:
         if isinstance(shape, physx.PhysxCollisionShapePlane):
             continue
         geom, local = shape_geometry(shape)
-        obj = fcl.CollisionObject(geom, fcl.Transform())
-        out.append(Shape(obj, geom, local.to_transformation_matrix()))
+        out.append((geom, local.to_transformation_matrix()))
     return out
+
+
+def _objects(geometry: Geometry) -> Geoms:
+    """Fresh collision objects of ``geometry`` (a world moves its own)."""
+    return [
+        Shape(fcl.CollisionObject(geom, fcl.Transform()), geom, local) for geom, local in geometry
+    ]
 
 
 def _place(geoms: Geoms, body: np.ndarray) -> None:
     for shape in geoms:
         m = body @ shape.local
         shape.obj.setTransform(fcl.Transform(m[:3, :3], m[:3, 3]))
-
-
-def _actor_shapes(actor) -> list[physx.PhysxCollisionShape]:
-    """Collision shapes of a ManiSkill actor (first sub-scene)."""
-    body = actor._objs[0].find_component_by_type(physx.PhysxRigidBaseComponent)
-    return list(body.get_collision_shapes())
 
 
 class CollisionWorld:
@@ -95,28 +103,27 @@ class CollisionWorld:
     moves with the arm and may touch the gripper.
     """
 
-    def __init__(self, kin: ArmKinematics, robot, obstacles: dict[str, tuple[Geoms, np.ndarray]]):
+    def __init__(
+        self,
+        kin: ArmKinematics,
+        robot: RobotModel,
+        obstacles: dict[str, tuple[Geometry, np.ndarray]],
+    ):
         self.kin = kin
-        parent = {
-            j.child_link.name: j.parent_link.name
-            for j in robot.get_joints()
-            if j.parent_link is not None
-        }
+        parent = robot.parent
         arm_joints = {kin.joints[i] for i in kin.arm}
-        moved = {j.child_link.name for j in robot.get_joints() if j.name in arm_joints}
+        moved = {child for joint, child in robot.joint_child.items() if joint in arm_joints}
         moved = _subtree(moved, parent)
         rest = kin.link_poses(kin.qpos[kin.arm])
-        static = dict(obstacles)
+        static = {name: (_objects(geometry), pose) for name, (geometry, pose) in obstacles.items()}
         self.links: dict[str, Geoms] = {}
-        for link in robot.get_links():
-            geoms = _body_geoms(link._objs[0].get_collision_shapes())
-            if not geoms:
-                continue
-            if link.name in moved:
-                self.links[link.name] = geoms
+        for name, geometry in robot.geometry.items():
+            geoms = _objects(geometry)
+            if name in moved:
+                self.links[name] = geoms
             else:
-                pose = rest[kin.links.index(link.name)].to_transformation_matrix()
-                static[link.name] = (geoms, pose)
+                pose = rest[kin.links.index(name)].to_transformation_matrix()
+                static[name] = (geoms, pose)
         self.obstacles: dict[str, Geoms] = {}
         for name, (geoms, pose) in static.items():
             _place(geoms, pose)
@@ -136,23 +143,6 @@ class CollisionWorld:
         for a, b in self.contacts(kin.qpos[kin.arm]):
             if a in robot_links and b in robot_links:
                 self.allow(a, b)
-
-    @classmethod
-    def from_env(cls, env, kin: ArmKinematics) -> CollisionWorld:
-        """The env's table and objects (actors ``table`` and ``object_k``, at their current
-        poses) as obstacles named ``table`` and ``object_k``."""
-        u = env.unwrapped
-        base_inv = u.agent.robot.pose.sp.inv()
-        actors = {"table": u.scene.actors["table"]}
-        actors.update({obj.name: obj for obj in u.objects})
-        obstacles = {
-            name: (
-                _body_geoms(_actor_shapes(actor)),
-                (base_inv * actor.pose.sp).to_transformation_matrix(),
-            )
-            for name, actor in actors.items()
-        }
-        return cls(kin, u.agent.robot, obstacles)
 
     def add_obstacle(
         self,

@@ -1,4 +1,4 @@
-"""Forward and inverse kinematics of one arm of a live env's robot (SAPIEN's pinocchio model).
+"""Forward and inverse kinematics of one arm of a robot model (SAPIEN's pinocchio model).
 
 Poses are in the robot's base frame. The arm's configuration ``q`` holds only its arm joints;
 the other joints (fingers, a second arm) stay at ``ArmKinematics.qpos`` values.
@@ -8,35 +8,30 @@ from __future__ import annotations
 
 import copy
 from collections.abc import Callable, Sequence
+from typing import TYPE_CHECKING
 
 import numpy as np
 import sapien
 
+if TYPE_CHECKING:
+    from .robot import RobotModel
+
 
 class ArmKinematics:
-    """FK and IK for the joints ``joint_names`` of ``robot``, with ``ee_link`` as end effector.
+    """FK and IK of arm ``arm`` of ``robot`` (its end effector: the arm's TCP), the other
+    joints at ``qpos`` (the robot's full configuration)."""
 
-    ``robot`` is a ManiSkill articulation (``env.unwrapped.agent.robot``, one sub-scene).
-    """
-
-    def __init__(self, robot, joint_names: Sequence[str], ee_link: str) -> None:
-        self.links = [link.name for link in robot.get_links()]
-        self.joints = [j.name for j in robot.get_active_joints()]
-        self.arm = np.array([self.joints.index(n) for n in joint_names])
-        self.ee_index = self.links.index(ee_link)
-        self.model = robot._objs[0].create_pinocchio_model()
-        limits = robot.get_qlimits()[0].cpu().numpy().astype(float)
-        self.lower, self.upper = limits[self.arm, 0], limits[self.arm, 1]
+    def __init__(self, robot: RobotModel, arm: int, qpos: np.ndarray) -> None:
+        self.links = list(robot.links)
+        self.joints = list(robot.joints)
+        self.arm = np.array([self.joints.index(n) for n in robot.arms[arm].joints])
+        self.ee_index = self.links.index(robot.arms[arm].ee_link)
+        self.model = robot.model
+        self.lower, self.upper = robot.lower[self.arm], robot.upper[self.arm]
         #: Full configuration the arm joints are written into (fingers etc. keep theirs).
-        self.qpos = robot.get_qpos()[0].cpu().numpy().astype(float)
+        self.qpos = np.array(qpos, dtype=float)
         self._mask = np.zeros(len(self.joints), dtype=np.int32)
         self._mask[self.arm] = 1
-
-    @classmethod
-    def from_env(cls, env, arm: int = 0) -> ArmKinematics:
-        """The kinematics of arm ``arm`` of the env's agent (Franka: the only arm)."""
-        agent = env.unwrapped.agent
-        return cls(agent.robot, arm_joint_names(agent, arm), agent.tcp_links[arm].name)
 
     @property
     def dof(self) -> int:
@@ -101,14 +96,6 @@ class ArmKinematics:
             return None
         ref = np.asarray(seeds[0], dtype=float)
         return min(solutions, key=lambda q: float(np.abs(q - ref).sum()))
-
-
-def arm_joint_names(agent, arm: int) -> list[str]:
-    """The joints of arm ``arm`` of an InstructMove agent (which lists every arm joint, arm
-    by arm, in ``arm_joint_names``)."""
-    names = list(agent.arm_joint_names)
-    per_arm = len(names) // len(agent.tcp_links)
-    return names[arm * per_arm : (arm + 1) * per_arm]
 
 
 def _wrap_into(q: np.ndarray, lower: np.ndarray, upper: np.ndarray) -> np.ndarray:

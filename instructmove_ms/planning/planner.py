@@ -4,13 +4,14 @@ their time parametrization into joint targets at the control frequency (``pd_joi
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 import numpy as np
 import sapien
 from ompl import base as ob
 from ompl import geometric as og
 from ompl import util as ou
+
+from instructmove_ms.agents.hardware import JointLimits
 
 from .collision import CollisionWorld
 from .kinematics import ArmKinematics
@@ -23,36 +24,6 @@ OMPL_SEED = 1
 #: Collision checks an RRTConnect attempt may spend (about a second here): a budget of work,
 #: not of time, so that a loaded machine plans exactly what an idle one does.
 CHECK_BUDGET = 5000
-
-#: Franka Panda joint limits from the datasheet: velocity (rad/s) and acceleration (rad/s^2).
-FRANKA_VELOCITY = np.array([2.175, 2.175, 2.175, 2.175, 2.61, 2.61, 2.61])
-FRANKA_ACCELERATION = np.array([15.0, 7.5, 10.0, 12.5, 15.0, 20.0, 20.0])
-#: PiperX joint velocity limit of the vendor description (rad/s), every joint. No acceleration
-#: limit is published: ours is 5 times the velocity, within the Franka's ratios (3.4 to 7.7).
-PIPERX_VELOCITY = np.full(6, 5.0)
-PIPERX_ACCELERATION = np.full(6, 25.0)
-
-
-@dataclass(frozen=True)
-class JointLimits:
-    """Per-joint velocity and acceleration bounds used by ``time_parametrize``."""
-
-    velocity: np.ndarray
-    acceleration: np.ndarray
-
-    def faster(self, factor: float) -> JointLimits:
-        """These limits, both ``factor`` times higher."""
-        return JointLimits(self.velocity * factor, self.acceleration * factor)
-
-    @classmethod
-    def franka(cls, scale: float = 0.3) -> JointLimits:
-        """The Franka's limits scaled down (demos move calmly and the PD tracks them)."""
-        return cls(FRANKA_VELOCITY * scale, FRANKA_ACCELERATION * scale)
-
-    @classmethod
-    def piperx(cls, scale: float = 0.15) -> JointLimits:
-        """One PiperX arm's limits scaled down to about the Franka demos' joint speeds."""
-        return cls(PIPERX_VELOCITY * scale, PIPERX_ACCELERATION * scale)
 
 
 def densify(path: np.ndarray, max_step: float) -> np.ndarray:
@@ -227,9 +198,3 @@ def time_parametrize(
             at = min(max(at, 0.0), total)
             out.append([np.interp(at, s, run[:, j]) for j in range(run.shape[1])])
     return np.asarray(out).reshape(-1, path.shape[1])
-
-
-def to_actions(targets: np.ndarray, gripper: float) -> np.ndarray:
-    """``pd_joint_pos`` actions: each row of joint targets followed by the gripper value
-    (Franka: 1 open, -1 closed)."""
-    return np.hstack([targets, np.full((len(targets), 1), gripper)]).astype(np.float32)

@@ -1,68 +1,32 @@
-"""One arm of a live env's robot as the planners see it: kinematics, joint limits, gripper
-values and the ``pd_joint_pos`` action layout of the whole robot.
+"""One arm of the robot as the planners see it at a scene state: kinematics, joint limits,
+gripper values and the ``pd_joint_pos`` action layout of the whole robot.
 
-The other arm of a dual-arm rig holds the configuration it had when the rig was built.
+The other arm of a dual-arm rig holds the configuration it had in that state.
 """
 
 from __future__ import annotations
 
-from collections.abc import Callable, Sequence
 from dataclasses import dataclass, replace
 
 import numpy as np
-import sapien
-import sapien.physx as physx
 
-from .kinematics import ArmKinematics, arm_joint_names
-from .planner import JointLimits
+from instructmove_ms.agents.hardware import Gripper, JointLimits
 
-
-@dataclass(frozen=True)
-class Gripper:
-    """A parallel gripper: its ``pd_joint_pos`` action value is ``offset + scale * width``
-    for fingers ``width`` metres apart (up to ``max_width``); ``closed`` squeezes whatever is
-    between them. ``tcp_in_grasp`` is the TCP frame in a grasp frame whose y axis is the
-    fingers' closing axis and whose z axis is the approach."""
-
-    max_width: float
-    scale: float
-    offset: float
-    closed: float
-    tcp_in_grasp: sapien.Pose
-
-    def value(self, width: float) -> float:
-        """The action value that opens the fingers ``width`` metres apart."""
-        return self.offset + self.scale * min(width, self.max_width)
-
-    @property
-    def open(self) -> float:
-        return self.value(self.max_width)
-
-
-#: Per robot uid: the gripper and the arm's joint limits.
-ROBOTS: dict[str, tuple[Gripper, Callable[[], JointLimits]]] = {
-    # ManiSkill's normalised Panda gripper: [-1, 1] spans finger targets -0.01..0.04 m; the
-    # TCP's y axis is the fingers' axis.
-    "franka": (Gripper(0.08, 20.0, -0.6, -1.0, sapien.Pose()), JointLimits.franka),
-    # The width itself; the fingers slide along link6's (and the TCP's) x axis.
-    "piperx": (
-        Gripper(0.1, 1.0, 0.0, 0.0, sapien.Pose(q=[np.sqrt(0.5), 0.0, 0.0, np.sqrt(0.5)])),
-        JointLimits.piperx,
-    ),
-}
-ROBOTS["piperx_single"] = ROBOTS["piperx"]
+from .kinematics import ArmKinematics
+from .robot import RobotModel
 
 
 @dataclass(frozen=True)
 class Rig:
-    """Arm ``arm`` of the env's robot (the Franka's only arm; the PiperX's 0 left, 1 right).
+    """Arm ``arm`` of a robot (the Franka's only arm; the PiperX's 0 left, 1 right).
 
-    ``shoulder`` is the position (base frame) of the link the arm's first joint turns.
-    ``hold`` is the full ``pd_joint_pos`` action that keeps the robot where it was at
-    ``from_env``; ``arm_slots`` and ``gripper_slot`` say where this arm's joint targets and
-    gripper value go in it. ``fingers`` lists (index in ``kin.qpos``, direction it opens)
-    of the arm's finger joints; ``tip_depth`` is how far the fingertips reach beyond the TCP
-    along the approach.
+    ``shoulder`` is the position (base frame) of the link the arm's first joint turns;
+    ``limits`` the joint limits at the demos' pace. ``hold`` is the full ``pd_joint_pos``
+    action that keeps the robot where it was in the state the rig was built at;
+    ``arm_slots`` and ``gripper_slot`` say where this arm's joint targets and gripper value
+    go in it. ``fingers`` lists (index in ``kin.qpos``, direction it opens) of the arm's
+    finger joints; ``tip_depth`` is how far the fingertips reach beyond the TCP along the
+    approach.
     """
 
     arm: int
@@ -77,42 +41,25 @@ class Rig:
     tip_depth: float
 
     @classmethod
-    def from_env(cls, env, arm: int = 0) -> Rig:
-        """The rig of arm ``arm`` at the env's current state (``pd_joint_pos`` control)."""
-        agent = env.unwrapped.agent
-        if agent.control_mode != "pd_joint_pos":
-            raise ValueError(f"planned actions need pd_joint_pos, not {agent.control_mode}")
-        gripper, limits = ROBOTS[agent.uid]
-        kin = ArmKinematics.from_env(env, arm)
-        qlimits = agent.robot.get_qlimits()[0].cpu().numpy()
-        index = {name: k for k, name in enumerate(kin.joints)}
-        hold, grippers, arm_slots, offset = [], [], [], 0
-        for key, controller in agent.controller.controllers.items():
-            names = [j.name for j in controller.joints]
-            if key == "arm":
-                hold += [kin.qpos[index[n]] for n in names]
-                arm_slots = [offset + names.index(kin.joints[i]) for i in kin.arm]
-            else:  # one gripper per arm, in arm order; it keeps its opening
-                finger = [(index[n], float(np.sign(qlimits[index[n]].sum()))) for n in names]
-                tips = [agent.robot.joints_map[n].child_link for n in names]
-                grippers.append((offset, tuple(finger), _reach_along(tips, agent.tcp_links[arm])))
-                k, sign = finger[0]
-                hold.append(gripper.value(2.0 * sign * kin.qpos[k]))
-            offset += controller.action_space.shape[0]
+    def of(cls, robot: RobotModel, arm: int, qpos: np.ndarray) -> Rig:
+        """Arm ``arm`` of ``robot`` at the full configuration ``qpos``."""
+        model = robot.arms[arm]
         return cls(
             arm,
-            kin,
-            _shoulder(agent, arm),
-            limits(),
-            gripper,
-            np.asarray(hold),
-            np.asarray(arm_slots),
-            *grippers[arm],
+            ArmKinematics(robot, arm, qpos),
+            model.shoulder,
+            robot.limits,
+            robot.gripper,
+            robot.hold(qpos),
+            np.asarray(model.slots.command),
+            model.slots.gripper,
+            model.fingers,
+            model.tip_depth,
         )
 
     @property
     def start(self) -> np.ndarray:
-        """The arm's configuration at ``from_env``."""
+        """The arm's configuration in the state the rig was built at."""
         return self.kin.qpos[self.kin.arm]
 
     @property
@@ -136,36 +83,3 @@ class Rig:
         out[:, self.arm_slots] = targets
         out[:, self.gripper_slot] = gripper
         return out.astype(np.float32)
-
-
-def _reach_along(links, tcp) -> float:
-    """How far the collision boxes and meshes of ``links`` reach along ``tcp``'s z axis."""
-    frame = tcp.pose.sp.inv()
-    reach = 0.0
-    for link in links:
-        for shape in link._objs[0].get_collision_shapes():
-            if isinstance(shape, physx.PhysxCollisionShapeBox):
-                corners = np.array([[a, b, c] for a in (-1, 1) for b in (-1, 1) for c in (-1, 1)])
-                points = corners * np.asarray(shape.half_size)
-            else:
-                points = np.asarray(shape.get_vertices()) * np.asarray(shape.get_scale())
-            m = (frame * link.pose.sp * shape.get_local_pose()).to_transformation_matrix()
-            reach = max(reach, float((points @ m[2, :3] + m[2, 3]).max()))
-    return reach
-
-
-def _shoulder(agent, arm: int) -> np.ndarray:
-    """Position (base frame) of the link that arm ``arm``'s first joint turns."""
-    link = agent.robot.joints_map[arm_joint_names(agent, arm)[0]].parent_link
-    return np.asarray((agent.robot.pose.sp.inv() * link.pose.sp).p, dtype=float)
-
-
-def arm_order(env, point: Sequence[float]) -> list[int]:
-    """The robot's arms, the one whose shoulder is nearest ``point`` (base frame, in the table
-    plane) first."""
-    agent = env.unwrapped.agent
-    xy = np.asarray(point, dtype=float)[:2]
-    distance = [
-        float(np.linalg.norm(_shoulder(agent, k)[:2] - xy)) for k in range(len(agent.tcp_links))
-    ]
-    return sorted(range(len(distance)), key=distance.__getitem__)

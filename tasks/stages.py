@@ -38,18 +38,12 @@ def latch_first(current: torch.Tensor, candidate: torch.Tensor) -> torch.Tensor:
 
 
 class StageTracker:
-    """Latched stage flags of N sub-scenes; each stage counts only after the previous one.
+    """Latched stage flags of N sub-scenes, named by a family's ``StageSchema``: each stage
+    counts once its condition holds after the one before it has. Also latches the first
+    object the robot reached and lifted (the target or a distractor: grounding errors)."""
 
-    Pick families: reach -> lift. PlaceA2B adds reach_place -> place after lift. Without a
-    target (generic, empty, absent_object conditions) only any-object stages move.
-    """
-
-    STAGES = ("reach", "lift", "reach_place", "place")
-
-    def __init__(self, num_envs: int, device) -> None:
-        self.flags = {
-            s: torch.zeros(num_envs, dtype=torch.bool, device=device) for s in self.STAGES
-        }
+    def __init__(self, names: tuple[str, ...], num_envs: int, device) -> None:
+        self.flags = {s: torch.zeros(num_envs, dtype=torch.bool, device=device) for s in names}
         self.reached_object = torch.full((num_envs,), -1, dtype=torch.long, device=device)
         self.lifted_object = torch.full_like(self.reached_object, -1)
 
@@ -61,23 +55,17 @@ class StageTracker:
 
     def update(
         self,
-        target: torch.Tensor,
         dist: torch.Tensor,
         within: torch.Tensor,
         lifted: torch.Tensor,
         rise: torch.Tensor,
-        over_goal: torch.Tensor,
-        placed: torch.Tensor,
+        conditions: list[torch.Tensor],
     ) -> None:
-        """``target`` (N,) index or -1; ``dist``, ``within``, ``lifted``, ``rise`` (N, K) per
-        object; ``over_goal``, ``placed`` (N,) for the target object."""
-        rows = torch.arange(target.shape[0], device=target.device)
-        has = target >= 0
-        t = target.clamp(min=0)
-        f = self.flags
+        """``dist``, ``within``, ``lifted``, ``rise`` (N, K) per object; ``conditions`` (N,)
+        per stage, in the schema's order."""
         self.reached_object = latch_first(self.reached_object, first_index(within, dist))
         self.lifted_object = latch_first(self.lifted_object, first_index(lifted, -rise))
-        f["reach"] |= has & within[rows, t]
-        f["lift"] |= has & lifted[rows, t] & f["reach"]
-        f["reach_place"] |= over_goal & f["lift"]
-        f["place"] |= placed & f["reach_place"]
+        previous = None
+        for flag, condition in zip(self.flags.values(), conditions, strict=True):
+            flag |= condition if previous is None else condition & previous
+            previous = flag

@@ -1,18 +1,13 @@
-"""Scripted reference behaviour: move the TCP over an object, privileged or blind.
-
-The oracle goes to the instruction's target (privileged); the language-blind policy goes to
-a random candidate. Both servo the TCP with the ``pd_ee_delta_pose`` controller: above the
-object first, then down onto its top.
-"""
+"""Test helpers: move a robot's TCP with ``pd_ee_delta_pose`` (a servo, privileged or blind)."""
 
 from __future__ import annotations
 
 import numpy as np
 import torch
 
-SERVO_GAIN = 1.5
-STEP_LIMIT = 0.1  # metres per unit action of pd_ee_delta_pose
-OPEN, CLOSED = 1.0, -1.0  # normalised gripper actions
+from instructmove_ms.policies import CLOSED, OPEN, SERVO_GAIN, STEP_LIMIT
+
+__all__ = ["CLOSED", "OPEN", "choose", "hold", "reach_object", "servo"]
 
 
 def tcp_position(env, arm: int = 0) -> np.ndarray:
@@ -20,12 +15,12 @@ def tcp_position(env, arm: int = 0) -> np.ndarray:
 
 
 def _ee_action(env, arm: int, delta: np.ndarray, gripper: float) -> np.ndarray:
-    """A ``pd_ee_delta_pose`` action moving ``arm``'s TCP by ``delta`` (normalised): the
-    Franka's is [xyz, rpy, gripper]; the PiperX's [left xyz rpy, right xyz rpy, grippers]."""
+    """A ``pd_ee_delta_pose`` action moving ``arm``'s TCP by ``delta`` (normalised), every
+    gripper at ``gripper``."""
+    layout = env.unwrapped.agent.action_layout()
     action = np.zeros(env.action_space.shape[-1], dtype=np.float32)
-    arms = env.unwrapped.agent.tcp_positions().shape[1]
-    action[6 * arm : 6 * arm + 3] = delta
-    action[6 * arms :] = gripper
+    action[list(layout[arm].command[:3])] = delta
+    action[[slots.gripper for slots in layout]] = gripper
     return action
 
 
@@ -47,30 +42,15 @@ def hold(env, gripper: float, steps: int) -> dict:
     return servo(env, tcp_position(env), gripper, steps, tol=-1.0)
 
 
-def object_top(env, index: int) -> np.ndarray:
-    u = env.unwrapped
-    spec = u.episode
-    inst = u.catalog[spec.objects[index].uuid]
-    return u.objects[index].pose.p[0].cpu().numpy() + np.array([0.0, 0.0, inst.height])
-
-
-def arm_for(env, xy) -> int:
-    """The arm whose base is nearest ``xy`` (the left one for objects on the left)."""
-    tcps = env.unwrapped.agent.tcp_positions()[0].cpu().numpy()
-    return int(np.argmin(np.linalg.norm(tcps[:, :2] - np.asarray(xy)[:2], axis=1)))
-
-
 def reach_object(env, index: int, steps: int = 80) -> dict:
-    """Go above object ``index``, then onto its top, with the nearest arm; returns the
-    final info."""
-    top = object_top(env, index)
-    arm = arm_for(env, top)
-    clear = (
-        max(
-            o.height for o in (env.unwrapped.catalog[x.uuid] for x in env.unwrapped.episode.objects)
-        )
-        + 0.08
-    )
+    """Go above object ``index``, then onto its top, with the arm whose TCP is nearest;
+    returns the final info."""
+    u = env.unwrapped
+    height = u.catalog[u.episode.objects[index].uuid].height
+    top = u.objects[index].pose.p[0].cpu().numpy() + [0.0, 0.0, height]
+    tcps = u.agent.tcp_positions()[0].cpu().numpy()
+    arm = int(np.argmin(np.linalg.norm(tcps[:, :2] - top[:2], axis=1)))
+    clear = max(u.catalog[x.uuid].height for x in u.episode.objects) + 0.08
     servo(env, np.array([top[0], top[1], clear]), OPEN, steps, tol=0.03, arm=arm)
     return servo(env, top - np.array([0.0, 0.0, 0.01]), OPEN, steps, arm=arm)
 

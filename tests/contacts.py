@@ -7,6 +7,8 @@ from collections.abc import Iterable
 
 import numpy as np
 
+from instructmove_ms.episode import actor_name
+
 #: Newtons above which a robot contact with the table or a distractor counts as a collision.
 FORCE_LIMIT = 5.0
 
@@ -38,5 +40,5 @@ def robot_contacts(env, ignore: Iterable[str] = ()) -> dict[tuple[str, str], flo
 
 def collisions(env, limit: float = FORCE_LIMIT) -> dict[tuple[str, str], float]:
     """Robot contacts above ``limit`` N with anything but the episode's target."""
-    target = f"object_{env.unwrapped.episode.target}"
+    target = actor_name(env.unwrapped.episode.target)
     return {k: f for k, f in robot_contacts(env, ignore=[target]).items() if f > limit}

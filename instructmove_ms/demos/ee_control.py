@@ -38,8 +38,6 @@ from tqdm import tqdm
 
 from instructmove_ms.validation import check_choice
 
-from .synthesis import family_stages
-
 MAX_REPEATS = 4  # converted steps per recorded step at most (a clipped delta is repeated)
 FRAME = "root_translation:root_aligned_body_rotation"
 
@@ -122,9 +120,9 @@ class Converter:
             save_video=False,
             save_on_reset=False,
             source_type="motion_planning",
-            source_desc=f"instructmove_ms.demos.convert: pd_joint_pos demos to {control_mode}",
+            source_desc=f"instructmove_ms.demos.ee_control: pd_joint_pos demos to {control_mode}",
         )
-        self.stages = family_stages(env_id)
+        self.stages = self.source.unwrapped.task.stages.flags
         self.pin = self.source.unwrapped.agent.robot.create_pinocchio_model()
 
     def step(self, action: np.ndarray) -> list[dict[str, bool]]:

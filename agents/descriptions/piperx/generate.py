@@ -1,6 +1,7 @@
 """Writes the PiperX URDFs of this folder from the published numbers.
 
-Run ``python agents/piperx/generate.py`` after changing a number; the URDFs are committed.
+Run ``python agents/descriptions/piperx/generate.py`` after changing a number; the URDFs are
+committed.
 Geometry is boxes and cylinders sized like the real links, each link spanning from its joint
 to the next joint; inertials are the published masses spread over that geometry.
 """
