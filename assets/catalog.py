@@ -209,6 +209,9 @@ class Catalog:
     def __len__(self) -> int:
         return len(self.instances)
 
+    def __contains__(self, uuid: object) -> bool:
+        return uuid in self._by_uuid
+
     def __getitem__(self, uuid: str) -> Instance:
         try:
             return self._by_uuid[uuid]

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import hashlib
 import json
-from dataclasses import asdict
+from dataclasses import asdict, dataclass
 from functools import cache
 from importlib import resources
 from pathlib import Path
@@ -141,15 +141,25 @@ def entry_of(inst: Instance) -> dict:
     return entry
 
 
+@dataclass(frozen=True)
+class ImportReport:
+    """An import's snapshot, the (asset id, reasons) of the assets left out and the
+    (asset id, repairs) of those whose meshes were repaired."""
+
+    path: Path
+    rejected: list[tuple[str, list[str]]]
+    repaired: list[tuple[str, list[str]]]
+
+
 def import_folder(
     source: Path, name: str, extend: str | None = DEFAULT_SNAPSHOT, threshold: float = 0.05
-) -> tuple[Path, list[tuple[str, list[str]]]]:
+) -> ImportReport:
     """Import ``source`` (see ``importer``), check every asset, and write snapshot ``name``
-    (the assets of ``extend`` plus the imported ones that pass). Returns the snapshot path
-    and the (asset id, failures) of those left out."""
+    (the assets of ``extend`` plus the imported ones that pass). Where no asset passes,
+    nothing is written and a ``ValueError`` gives every asset's reasons."""
     from tqdm import tqdm
 
-    from .importer import import_asset, read_metadata
+    from .importer import AssetImportError, import_asset, read_metadata
     from .quality import check_instances
 
     if snapshot_path(name) is not None and name in {
@@ -158,18 +168,29 @@ def import_folder(
         raise ValueError(f"snapshot {name!r} ships with the package; choose another name")
     entries = read_metadata(source)
     base = list(load_snapshot(extend).instances) if extend else []
-    instances = [
-        import_asset(e, source, threshold) for e in tqdm(entries, desc="decomposing", unit="asset")
-    ]
-    rejected, kept = [], []
-    for entry, inst, result in zip(entries, instances, check_instances(instances), strict=True):
+    rejected, repaired, imported = [], [], []
+    for entry in tqdm(entries, desc="decomposing", unit="asset"):
+        try:
+            inst, repairs = import_asset(entry, source, threshold)
+        except AssetImportError as exc:
+            rejected.append((entry["id"], [str(exc)]))
+            continue
+        imported.append((entry["id"], inst))
+        if repairs:
+            repaired.append((entry["id"], repairs))
+    kept = []
+    results = check_instances([inst for _, inst in imported])
+    for (asset_id, inst), result in zip(imported, results, strict=True):
         if result.ok:
             kept.append(inst)
         else:
-            rejected.append((entry["id"], result.failures))
+            rejected.append((asset_id, result.failures))
+    if not kept:
+        reasons = "; ".join(f"{a}: {', '.join(r)}" for a, r in rejected)
+        raise ValueError(f"no asset of {source} passed the checks, nothing written ({reasons})")
     for inst in kept:
         write_json(imported_record_path(inst.uuid), inst.to_record(), indent=None)
     snapshot = [entry_of(i) for i in base + kept]
     path = write_snapshot(user_snapshot_dir() / f"{name}.json", name, snapshot)
     load_snapshot.cache_clear()
-    return path, rejected
+    return ImportReport(path, rejected, repaired)

@@ -52,7 +52,8 @@ def source(tmp_path, monkeypatch):
 
 
 def test_import_makes_a_snapshot_with_a_hollow_physical_cup(source, tmp_path):
-    path, rejected = snap.import_folder(source, "my_scans", extend=None, threshold=0.08)
+    report = snap.import_folder(source, "my_scans", extend=None, threshold=0.08)
+    path, rejected = report.path, report.rejected
     assert not rejected
     assert path.parent == tmp_path / "home" / "snapshots"
     catalog = snap.load_snapshot("my_scans")
@@ -85,3 +86,66 @@ def test_bad_metadata_names_the_problem(source):
     (source / "metadata.json").write_text(json.dumps(meta))
     with pytest.raises(AssetImportError, match="'unobtainium'.*allowed"):
         read_metadata(source)
+
+
+def _write_source(folder, meshes: dict) -> None:
+    """An import folder with one plastic box per (id, mesh)."""
+    folder.mkdir(parents=True, exist_ok=True)
+    assets = []
+    for asset_id, mesh in meshes.items():
+        mesh.export(folder / f"{asset_id}.obj")
+        assets.append(
+            {
+                "id": asset_id,
+                "mesh": f"{asset_id}.obj",
+                "category": "cardboard_box",
+                "colors": ["red"],
+                "material": "plastic",
+                "shape": "cuboid",
+                "graspable": False,
+            }
+        )
+    (folder / "metadata.json").write_text(json.dumps({"assets": assets}))
+
+
+def _box_without(faces) -> trimesh.Trimesh:
+    box = trimesh.creation.box([0.24, 0.16, 0.12])
+    keep = np.ones(len(box.faces), dtype=bool)
+    keep[list(faces)] = False
+    box.update_faces(keep)
+    return box
+
+
+def test_broken_meshes_are_refused_by_asset_and_file_and_nothing_is_written(tmp_path, monkeypatch):
+    home = tmp_path / "home"
+    monkeypatch.setenv("INSTRUCTMOVE_HOME", str(home))
+    source = tmp_path / "broken"
+    _write_source(
+        source,
+        {
+            "two_open_walls": _box_without([0, 1, 4, 5]),  # holes in two walls
+            "flat_card": trimesh.creation.box([0.24, 0.16, 0.0]),
+        },
+    )
+    with pytest.raises(ValueError) as caught:
+        snap.import_folder(source, "broken", extend=None)
+    message = str(caught.value)
+    assert "nothing written" in message
+    assert f"'two_open_walls': {source / 'two_open_walls.obj'} is not watertight" in message
+    assert f"'flat_card': {source / 'flat_card.obj'} is flat" in message
+    assert not (home / "snapshots").exists(), "no snapshot"
+    assert not (home / "coacd").exists(), "no decomposition cached"
+
+
+def test_a_small_hole_is_filled_and_reported(tmp_path, monkeypatch):
+    monkeypatch.setenv("INSTRUCTMOVE_HOME", str(tmp_path / "home"))
+    source = tmp_path / "holed"
+    _write_source(source, {"one_missing_triangle": _box_without([3])})
+    report = snap.import_folder(source, "holed", extend=None, threshold=0.08)
+    assert not report.rejected
+    ((asset_id, repairs),) = report.repaired
+    assert asset_id == "one_missing_triangle" and repairs == [
+        "filled holes bounded by 3 open edges"
+    ]
+    (box,) = snap.load_snapshot("holed").instances
+    np.testing.assert_allclose(box.dims, (0.24, 0.16, 0.12), atol=0.002)
