@@ -19,7 +19,7 @@ import numpy as np
 from .assets.catalog import Catalog, Instance
 from .episode import CONDITIONS, EpisodeSpec, ObjectSpec
 from .family import Members, TaskSpec
-from .language import noun, preposition, referring_expression, render
+from .language import noun, preposition, pronoun, referring_expression, render
 from .layout import Workspace, sample_layout
 from .sampler import RoleError, RoleSpec, names_clash, resolve_roles
 from .validation import check_choice
@@ -61,7 +61,8 @@ def _instruction(
     task: TaskSpec, rng, cue: dict, members: Members, goal: int, dest: int, split: str
 ) -> str:
     """Render the instruction that singles out ``goal`` (and ``dest``) under ``cue``."""
-    slots = {"target": task.cue.phrase(rng, cue, members, goal, split)}
+    phrase = task.cue.phrase(rng, cue, members, goal, split)
+    slots = {"target": phrase, "it": pronoun(members[goal][0], phrase)}
     if dest >= 0:
         receptacle = members[dest][0]
         slots.update(
@@ -113,11 +114,11 @@ def _condition(
     if condition == "empty":
         text = ""
     else:
-        word = "object"
+        word, named = "object", None
         if condition == "absent_object":
-            absent = _absent_instance(rng, catalog, members)
-            word, cue = noun(rng, absent), {"absent": absent.category}
-        slots = {"target": word}
+            named = _absent_instance(rng, catalog, members)
+            word, cue = noun(rng, named), {"absent": named.category}
+        slots = {"target": word, "it": pronoun(named, word)}
         if spec.goal_destination >= 0:
             receptacle = members[spec.goal_destination][0]
             slots.update(destination=noun(rng, receptacle), prep=preposition(receptacle))

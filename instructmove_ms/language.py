@@ -16,8 +16,32 @@ def referring_expression(rng: np.random.Generator, instance: Instance, split: st
     return pool[int(rng.integers(len(pool)))]
 
 
+#: Nouns ending in "s" that name one thing.
+SINGULAR_S = frozenset({"lens", "thermos"})
+
+
+def is_plural(noun: str) -> bool:
+    """Whether ``noun`` names things in the plural ("nail clippers", "chips"), not one ("a
+    pair of scissors", "a wine glass", "a thermos")."""
+    words = noun.split()
+    last = words[-1]
+    return (
+        last.endswith("s")
+        and not last.endswith("ss")
+        and last not in SINGULAR_S
+        and ("of" not in words)
+    )
+
+
+def pronoun(instance: Instance | None, phrase: str) -> str:
+    """ "them" where ``phrase`` names ``instance`` by a plural noun (its longest noun in the
+    phrase), else "it"."""
+    named = [n for n in (instance.nouns if instance else ()) if f" {n} " in f" {phrase} "]
+    return "them" if named and is_plural(max(named, key=len)) else "it"
+
+
 def render(rng: np.random.Generator, templates: tuple[str, ...], **slots: str) -> str:
-    """Fill a randomly chosen template; every slot must be used by the templates."""
+    """Fill a randomly chosen template with ``slots`` (a template may leave some unused)."""
     template = templates[int(rng.integers(len(templates)))]
     return template.format(**slots)
 

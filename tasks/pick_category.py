@@ -27,12 +27,12 @@ PICK_TEMPLATES = (
     "pick the {target} up",
     "grab the {target}",
     "lift the {target}",
-    "grasp the {target} and lift it",
+    "grasp the {target} and lift {it}",
     "take the {target} off the table",
     "raise the {target}",
     "please pick up the {target}",
     "can you lift the {target}",
-    "get the {target} and hold it up",
+    "get the {target} and hold {it} up",
 )
 
 
