@@ -22,6 +22,10 @@ def _cmd_episode(args: argparse.Namespace) -> int:
     import gymnasium as gym
 
     import instructmove_ms  # noqa: F401  (registration)
+    from instructmove_ms.tasks import TASKS
+    from instructmove_ms.validation import check_choice
+
+    check_choice("task", args.task, TASKS)
 
     env = gym.make(
         args.task,
@@ -143,11 +147,13 @@ def _cmd_assets_import(args: argparse.Namespace) -> int:
 
     from instructmove_ms.assets.snapshot import import_folder
 
-    path, rejected = import_folder(Path(args.source), args.name, args.extend or None)
-    for asset_id, failures in rejected:
+    report = import_folder(Path(args.source), args.name, args.extend or None)
+    for asset_id, repairs in report.repaired:
+        print(f"repaired {asset_id}: {'; '.join(repairs)}", file=sys.stderr)
+    for asset_id, failures in report.rejected:
         print(f"left out {asset_id}: {'; '.join(failures)}", file=sys.stderr)
-    print(f"snapshot {args.name!r} -> {path} ({len(rejected)} assets left out)")
-    return 1 if rejected else 0
+    print(f"snapshot {args.name!r} -> {report.path} ({len(report.rejected)} assets left out)")
+    return 1 if report.rejected else 0
 
 
 def _cmd_episodes_write(args: argparse.Namespace) -> int:
@@ -258,10 +264,19 @@ def _load_policy(spec: str, obs_mode: str, control_mode: str):
     module, _, name = spec.partition(":")
     if not name:
         raise ValueError(
-            f"unknown policy {spec!r}; allowed: {sorted(REFERENCE_POLICIES)}, "
+            f"unknown policy {spec!r}; allowed: {', '.join(sorted(REFERENCE_POLICIES))}, "
             "ws://HOST:PORT or MODULE:CLASS"
         )
-    return getattr(importlib.import_module(module), name)()
+    try:
+        found = importlib.import_module(module)
+    except ImportError as exc:
+        raise ValueError(f"policy {spec!r}: cannot import module {module!r} ({exc})") from None
+    if not hasattr(found, name):
+        raise ValueError(f"policy {spec!r}: module {module!r} has no {name!r}")
+    try:
+        return getattr(found, name)()
+    except TypeError as exc:
+        raise ValueError(f"policy {spec!r} cannot be made without arguments ({exc})") from None
 
 
 def _eval_configs(args: argparse.Namespace):
@@ -295,6 +310,8 @@ def _cmd_eval(args: argparse.Namespace) -> int:
 
     if not (args.task or args.config):
         raise ValueError("eval needs --task or --config")
+    if args.episodes is not None and args.episodes < 1:
+        raise ValueError(f"--episodes must be at least 1, got {args.episodes}")
     if args.write_config:
         if args.condition == "all":
             raise ValueError("--write-config writes one condition's episodes, not 'all'")
@@ -307,9 +324,12 @@ def _cmd_eval(args: argparse.Namespace) -> int:
         raise ValueError("eval needs --policy and --out (or --write-config FILE)")
     check_backend(args.num_envs, args.sim_backend)
     video = VideoSettings(first=args.video_first) if args.video else None
+    configs = list(_eval_configs(args))  # every input checked before the policy starts
+    for _, config in configs:
+        config.check()
     policy = _load_policy(args.policy, args.obs_mode, args.control_mode)
     rows = []
-    for out, config in _eval_configs(args):
+    for out, config in configs:
         summary = evaluate_config(policy, config, out, args.num_envs, args.sim_backend, video)
         rows += summary["groups"]
     print(markdown_table(rows))
@@ -450,14 +470,25 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def main(argv: list[str] | None = None) -> int:
+    """Run the command of ``argv``; an error the input causes (a bad value, a missing or
+    broken file, an unreachable policy server) prints one line and exits non-zero: 2 for
+    bad input, 3 for a policy server that is gone (resume the run once it is back)."""
+    from instructmove_ms.guard import ServerError
+
     args = build_parser().parse_args(argv)
     try:
         return args.func(args)
     except BrokenPipeError:  # output piped into a reader that stopped (head, less)
         sys.stderr.close()
         return 0
-    except (ValueError, KeyError, FileNotFoundError) as exc:
+    except ServerError as exc:
         print(f"instructmove: error: {exc}", file=sys.stderr)
+        return 3
+    except (ValueError, FileNotFoundError) as exc:
+        print(f"instructmove: error: {exc}", file=sys.stderr)
+        return 2
+    except KeyError as exc:
+        print(f"instructmove: error: {exc.args[0] if exc.args else exc}", file=sys.stderr)
         return 2
 
 

@@ -9,7 +9,7 @@ Scene building, the instruction, scoring and later demo generation all read it.
 from __future__ import annotations
 
 import json
-from dataclasses import asdict, dataclass, field
+from dataclasses import MISSING, asdict, dataclass, field, fields
 
 CONDITIONS = ("normal", "alternative_target", "generic", "empty", "absent_object")
 SPEC_VERSION = 1
@@ -62,19 +62,28 @@ class EpisodeSpec:
 
     @classmethod
     def from_dict(cls, data: dict) -> EpisodeSpec:
+        """The spec of ``data``; a ``ValueError`` names missing or unknown fields."""
+        declared = fields(cls)
+        required = [f.name for f in declared if f.default is f.default_factory is MISSING]
+        missing = [k for k in required if k not in data]
+        unknown = sorted(set(data) - {f.name for f in declared})
+        if missing:
+            raise ValueError(f"episode spec lacks {', '.join(missing)}")
+        if unknown:
+            raise ValueError(f"episode spec has unknown fields {', '.join(unknown)}")
         if data.get("version", SPEC_VERSION) != SPEC_VERSION:
             raise ValueError(
                 f"episode spec version {data.get('version')!r}; "
                 f"this release reads version {SPEC_VERSION}"
             )
-        fields = dict(data)
-        fields["objects"] = tuple(
+        values = dict(data)
+        values["objects"] = tuple(
             ObjectSpec(o["uuid"], o["category"], o["role"], tuple(o["pose"]))
             for o in data["objects"]
         )
         for key in ("candidates", "robot_qpos", "destinations"):
-            fields[key] = tuple(data.get(key, ()))
-        return cls(**fields)
+            values[key] = tuple(data.get(key, ()))
+        return cls(**values)
 
     @classmethod
     def from_json(cls, text: str) -> EpisodeSpec:

@@ -7,9 +7,18 @@ config file. Each episode's env is reset to its spec, the policy acts for the ho
 last step is scored. Results append to ``episodes.jsonl`` as they finish, so an interrupted
 run resumes where it stopped; the reports (see ``reports``) are rewritten at the end.
 
+Each episode has a seed of its own (its ``reset_kwargs`` seed): a policy whose ``reset``
+takes a ``seed`` argument gets it (a list, one per sub-scene, with ``num_envs > 1``) and
+draws its randomness from it, so a run that was interrupted and resumed scores exactly what
+an uninterrupted one does. A torn last row (a run killed while writing it) is dropped on
+resume. One run at a time holds the output folder (``files.OutputLock``).
+
 A policy that fails an episode (raises, or returns an action of the wrong shape or with
 NaN/inf; see ``guard``) gets the message in that row's ``error`` field and the traceback in
-``errors.log``; the episode is scored as failed and the run goes on to the next one.
+``errors.log``; the episode is scored as failed and the run goes on to the next one. A
+failure of the policy's infrastructure (``guard.ServerError``: a policy server that cannot
+be reached) is not the policy's: the run stops there and the episodes in flight stay
+unscored, so that a resume runs them.
 
 ``num_envs > 1`` runs that many episodes at once, one per sub-scene of ManiSkill's GPU
 simulation: the policy gets batched observations and returns (num_envs, dim) actions, each
@@ -19,6 +28,7 @@ unfinished episodes. The CPU simulation runs one env per process.
 
 from __future__ import annotations
 
+import inspect
 import json
 import re
 import traceback
@@ -32,6 +42,7 @@ import torch
 from tqdm import tqdm
 
 from . import heldout
+from .files import OutputLock, append_text, clean_stale, read_rows
 from .guard import PolicyError, check_action, guarded
 from .heldout import ConfigEpisode, EvaluatorConfig
 from .metrics import EpisodeResult, score_episode
@@ -56,17 +67,13 @@ def check_backend(num_envs: int, sim_backend: str) -> None:
         raise ValueError(f"{needs}, which needs a CUDA device; none is available")
 
 
-def _done(path: Path) -> dict:
-    """Finished episodes of an earlier run by id (a torn last line is dropped)."""
-    done = {}
-    if path.is_file():
-        for line in path.read_text().splitlines():
-            try:
-                row = json.loads(line)
-            except json.JSONDecodeError:
-                continue
-            done[row["episode_id"]] = row
-    return done
+def takes_seed(reset: Any) -> bool:
+    """Whether a policy's ``reset`` takes the episode seed (a ``seed`` or ``**`` argument)."""
+    try:
+        parameters = inspect.signature(reset).parameters.values()
+    except (TypeError, ValueError):
+        return False
+    return any(p.name == "seed" or p.kind is p.VAR_KEYWORD for p in parameters)
 
 
 def _numpy(x: Any) -> np.ndarray:
@@ -109,7 +116,12 @@ class _Runner:
         self._frames(frames, latched)
         if hasattr(self.policy, "bind"):
             guarded("bind", self.policy.bind, self.env)
-        guarded("reset", self.policy.reset, obs)
+        if takes_seed(self.policy.reset):
+            seeds = [e.seed for e in batch]
+            seed = seeds if u.num_envs > 1 else seeds[0]
+            guarded("reset", lambda: self.policy.reset(obs, seed=seed))
+        else:
+            guarded("reset", self.policy.reset, obs)
         for _ in range(self.horizon):
             action = check_action(guarded("act", self.policy.act, obs), dim, u.num_envs)
             obs, _, _, _, info = self.env.step(action)
@@ -153,8 +165,8 @@ class _Runner:
     def _log_error(self, batch: list[ConfigEpisode], exc: PolicyError) -> None:
         ids = ", ".join(str(e.episode_id) for e in batch)
         tqdm.write(f"episode {ids}: {exc}")
-        with (self.out / "errors.log").open("a") as log:
-            log.write(f"episode {ids}:\n{''.join(traceback.format_exception(exc))}\n")
+        text = f"episode {ids}:\n{''.join(traceback.format_exception(exc))}\n"
+        append_text(self.out / "errors.log", text)
 
     def _write_video(
         self, episode: ConfigEpisode, frames: list, result: EpisodeResult, error: str | None
@@ -205,10 +217,23 @@ def evaluate_config(
     """Run ``policy`` on exactly the episodes of ``config``; write the config used, the
     results and the reports to ``out``; return the summary."""
     check_backend(num_envs, sim_backend)
-    out.mkdir(parents=True, exist_ok=True)
+    config.check()  # before anything is written
+    with OutputLock(out, "instructmove eval"):
+        clean_stale(out)
+        return _evaluate(policy, config, out, num_envs, sim_backend, video)
+
+
+def _evaluate(
+    policy: Any,
+    config: EvaluatorConfig,
+    out: Path,
+    num_envs: int,
+    sim_backend: str,
+    video: VideoSettings | None,
+) -> dict:
     config.write(out / "config.json")
     log = out / "episodes.jsonl"
-    done = _done(log)
+    done = {row["episode_id"]: row for row in read_rows(log)}
     todo = [e for e in config.episodes if e.episode_id not in done]
     if todo:
         filmed = {e.episode_id for e in config.episodes[: video.first]} if video else set()

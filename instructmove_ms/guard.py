@@ -20,10 +20,18 @@ class PolicyError(Exception):
     """The policy failed this episode; the message says how."""
 
 
+class ServerError(Exception):
+    """The policy's infrastructure failed (its server cannot be reached, or the connection
+    was lost and did not come back): not the policy's fault, so no episode's score."""
+
+
 def guarded(name: str, fn: Callable[..., Any], *args: Any) -> Any:
-    """``fn(*args)``, with any exception raised again as a PolicyError naming ``name``."""
+    """``fn(*args)``, with any exception but a ``ServerError`` raised again as a
+    PolicyError naming ``name``."""
     try:
         return fn(*args)
+    except ServerError:
+        raise
     except Exception as exc:
         raise PolicyError(f"{name}() raised {type(exc).__name__}: {exc}") from exc
 

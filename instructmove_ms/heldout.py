@@ -18,6 +18,7 @@ from dataclasses import dataclass
 from importlib import resources
 from pathlib import Path
 
+from .assets import DEFAULT_SNAPSHOT, load_snapshot
 from .episode import CONDITIONS, EpisodeSpec
 from .files import write_json, write_text
 from .splits import EVAL_SPLITS, eval_seed
@@ -94,10 +95,16 @@ class EvaluatorConfig:
 
     @classmethod
     def from_dict(cls, data: dict) -> EvaluatorConfig:
-        info = data["env_info"]
-        check_choice("env_info.env_id", info["env_id"], TASKS)
+        """The config of ``data``; a ``ValueError`` names what is missing or wrong."""
+        try:
+            info, items = data["env_info"], data["episodes"]
+            check_choice("env_info.env_id", info["env_id"], TASKS)
+        except (KeyError, TypeError) as exc:
+            raise ValueError(
+                f"not an evaluator config: no env_info.env_id or episodes ({exc})"
+            ) from None
         episodes = []
-        for i, item in enumerate(data["episodes"]):
+        for i, item in enumerate(items):
             episode_id = item.get("episode_id", i)
             reset = item.get("reset_kwargs", {})
             if "episode" not in reset.get("options", {}):
@@ -105,7 +112,10 @@ class EvaluatorConfig:
                     f"config episode {episode_id!r} has no reset_kwargs.options.episode: "
                     "InstructMove episodes are given by their spec"
                 )
-            spec = EpisodeSpec.from_dict(reset["options"]["episode"])
+            try:
+                spec = EpisodeSpec.from_dict(reset["options"]["episode"])
+            except (KeyError, TypeError, ValueError) as exc:
+                raise ValueError(f"config episode {episode_id!r}: {exc}") from None
             episodes.append(ConfigEpisode(episode_id, int(reset.get("seed", spec.seed)), spec))
         ids = [e.episode_id for e in episodes]
         if len(set(ids)) != len(ids):
@@ -123,9 +133,40 @@ class EvaluatorConfig:
         """Write the config as JSON, atomically."""
         return write_json(path, self.to_dict(), indent=2)
 
+    def check(self) -> None:
+        """Raise a ``ValueError`` naming the first episode the config's env cannot build:
+        one of another family or robot, or with an object its snapshot lacks."""
+        if not self.episodes:
+            raise ValueError("the evaluator config holds no episodes")
+        task = TASKS.get(self.env_id)
+        robot = self.env_kwargs.get("robot_uids") or (task.default_robot if task else None)
+        catalog = load_snapshot(self.env_kwargs.get("snapshot", DEFAULT_SNAPSHOT))
+        for e in self.episodes:
+            if task is not None and e.spec.family != task.family:
+                raise ValueError(
+                    f"config episode {e.episode_id!r} is a {e.spec.family} episode, "
+                    f"not one of {self.env_id} ({task.family})"
+                )
+            if robot is not None and e.spec.robot != robot:
+                raise ValueError(
+                    f"config episode {e.episode_id!r} is for robot {e.spec.robot!r}, not {robot!r}"
+                )
+            for obj in e.spec.objects:
+                if obj.uuid not in catalog:
+                    raise ValueError(
+                        f"config episode {e.episode_id!r}: object {obj.uuid!r} "
+                        f"({obj.category}) is not in snapshot {catalog.name!r}"
+                    )
+
     @classmethod
     def load(cls, path: Path) -> EvaluatorConfig:
-        return cls.from_dict(json.loads(path.read_text()))
+        """The config file ``path``; a ``ValueError`` names the file and the fault."""
+        try:
+            return cls.from_dict(json.loads(Path(path).read_text()))
+        except FileNotFoundError:
+            raise ValueError(f"{path}: no such evaluator config file") from None
+        except (ValueError, AttributeError) as exc:  # JSONDecodeError is a ValueError
+            raise ValueError(f"{path}: {exc}") from None
 
 
 def evaluator_config(
@@ -140,7 +181,10 @@ def evaluator_config(
     each re-rendered for ``condition``: the same scene with that condition's instruction."""
     check_choice("task", env_id, TASKS)
     check_choice("condition", condition, CONDITIONS)
+    if episodes is not None and episodes < 1:
+        raise ValueError(f"episodes must be at least 1, got {episodes}")
     robot = robot or TASKS[env_id].default_robot
+    check_choice("robot", robot, TASKS[env_id].supported_robots)
     specs = load_set(env_id, robot, split, folder)[:episodes]
     if condition != "normal":
         specs = _rerender(env_id, robot, split, condition, specs)

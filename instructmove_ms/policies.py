@@ -1,9 +1,12 @@
 """Reference policies in ManiSkill's evaluator convention.
 
 A policy is a class with ``get_obs_mode()``, ``get_control_mode()``, ``reset(obs)`` and
-``act(obs)``. Privileged reference policies also get ``bind(env)``, which the evaluator
-calls before each episode; they read the episode through a ``PlanningScene`` built for the
-object (and receptacle) they go for (a learned policy never does).
+``act(obs)``. ``reset`` may take ``seed``, the episode's own seed: the random ones here draw
+from a generator seeded by (their own seed, the episode's), so an episode's choices do not
+depend on which episodes the process ran before it (a resumed evaluation scores what an
+uninterrupted one does). Privileged reference policies also get ``bind(env)``, which the
+evaluator calls before each episode; they read the episode through a ``PlanningScene``
+built for the object (and receptacle) they go for (a learned policy never does).
 
 - ``OraclePolicy`` (``oracle``): plays the demo generator's collision-free planned pick
   (and place) of the instruction's target (privileged): the upper bound.
@@ -37,15 +40,27 @@ def goal_of(spec: EpisodeSpec) -> tuple[int, int]:
     return spec.target, spec.goal_destination
 
 
+class Seeded:
+    """A policy's randomness: a generator seeded by the policy's ``seed``, re-seeded for each
+    episode by (``seed``, the episode's seed) when the evaluator passes one."""
+
+    def __init__(self, seed: int = 0) -> None:
+        self.seed, self.rng = seed, np.random.default_rng(seed)
+
+    def reseed(self, episode_seed: int | None) -> None:
+        if episode_seed is not None:
+            self.rng = np.random.default_rng([self.seed, episode_seed])
+
+
 def random_goal(spec: EpisodeSpec, rng: np.random.Generator) -> tuple[int, int]:
     """A random candidate (and receptacle): the choice of a policy that ignores the text."""
     dest = int(rng.choice(spec.destinations)) if spec.destinations else -1
     return int(rng.choice(spec.candidates)), dest
 
 
-class RandomPolicy:
+class RandomPolicy(Seeded):
     def __init__(self, seed: int = 0, obs_mode: str = "state") -> None:
-        self.rng = np.random.default_rng(seed)
+        super().__init__(seed)
         self.obs_mode = obs_mode
         self.space = None
 
@@ -58,20 +73,20 @@ class RandomPolicy:
     def bind(self, env) -> None:
         self.space = env.action_space
 
-    def reset(self, obs) -> None:
-        pass
+    def reset(self, obs, seed: int | None = None) -> None:
+        self.reseed(seed)
 
     def act(self, obs) -> np.ndarray:
         low, high = self.space.low, self.space.high
         return self.rng.uniform(low, high).astype(np.float32)
 
 
-class ScriptedOraclePolicy:
+class ScriptedOraclePolicy(Seeded):
     """Top-down scripted pick (and place) of a chosen object, with the arm whose TCP is
     nearest, by servoing its TCP with ``pd_ee_delta_pose``."""
 
     def __init__(self, seed: int = 0) -> None:
-        self.rng = np.random.default_rng(seed)
+        super().__init__(seed)
         self.env = None
 
     def get_obs_mode(self) -> str:
@@ -92,7 +107,8 @@ class ScriptedOraclePolicy:
     def bind(self, env) -> None:
         self.env = env
 
-    def reset(self, obs) -> None:
+    def reset(self, obs, seed: int | None = None) -> None:
+        self.reseed(seed)
         scene = PlanningScene.from_env(self.env, *self.choose(self.env.unwrapped.episode))
         inst = scene.objects[scene.target].instance
         top = scene.pose(scene.target).p + [0.0, 0.0, inst.height]
@@ -142,7 +158,7 @@ class ScriptedBlindPolicy(ScriptedOraclePolicy):
         return random_goal(spec, self.rng)
 
 
-class OraclePolicy:
+class OraclePolicy(Seeded):
     """Privileged: plays the demo generator's planned motions (``demos.script``) for the
     instruction's target (``pd_joint_pos``): the pick, then with a receptacle the place (or
     a relay between a dual-arm rig's arms first), each planned from the state the last one
@@ -154,6 +170,7 @@ class OraclePolicy:
     PICK_ATTEMPTS = 3
 
     def __init__(self, seed: int = 0, obs_mode: str = "state") -> None:
+        super().__init__(seed)
         self.obs_mode = obs_mode
 
     def get_obs_mode(self) -> str:
@@ -165,7 +182,8 @@ class OraclePolicy:
     def bind(self, env) -> None:
         self.env = env
 
-    def reset(self, obs) -> None:
+    def reset(self, obs, seed: int | None = None) -> None:
+        self.reseed(seed)
         obj, dest = self.choose(self.env.unwrapped.episode)
         scene = PlanningScene.from_env(self.env, obj, dest)
         self.script = MotionScript(scene, self.PICK_ATTEMPTS, done=obj < 0)
@@ -189,10 +207,6 @@ class OraclePolicy:
 class BlindPolicy(OraclePolicy):
     """The oracle's planned motions for a random candidate (and receptacle): a policy with
     perfect control that ignores the language, which scores about 1/|G|."""
-
-    def __init__(self, seed: int = 0, obs_mode: str = "state") -> None:
-        super().__init__(seed, obs_mode)
-        self.rng = np.random.default_rng(seed)
 
     def choose(self, spec: EpisodeSpec) -> tuple[int, int]:
         return random_goal(spec, self.rng)

@@ -4,18 +4,33 @@ This is the protocol of openpi's policy server: on connection the server sends i
 each request is a msgpack map of numpy arrays (the observation, with the instruction under
 ``prompt``) and each reply a map whose ``actions`` is one action or a chunk of them (the
 client plays a chunk out before asking again). Arrays travel as maps with ``__ndarray__``,
-``data``, ``dtype`` and ``shape``; a text frame from the server is an error report.
+``data``, ``dtype`` and ``shape``; a text frame from the server is an error report (the
+policy's failure).
+
+A server that cannot be reached, or a connection that closes or times out, is not the
+policy's failure: the client reconnects with a bounded back-off (``RETRIES`` attempts,
+waits doubling from ``BACKOFF`` seconds) and asks again, and raises ``guard.ServerError``
+naming the server if it stays away.
 """
 
 from __future__ import annotations
 
+import time
 from contextlib import ExitStack
 from typing import Any
 
 import msgpack
 import numpy as np
 import torch
-from websockets.sync.client import connect
+from websockets.exceptions import ConnectionClosed
+from websockets.sync.client import ClientConnection, connect
+
+from .guard import ServerError
+
+RETRIES = 5  # connection attempts before the server counts as gone
+BACKOFF = 0.5  # seconds before the second attempt; doubled for each further one
+#: What a lost or unreachable server raises (refused, reset, closed, timed out).
+NETWORK_ERRORS = (OSError, TimeoutError, ConnectionClosed)
 
 
 def _encode(obj: Any) -> Any:
@@ -65,14 +80,52 @@ class RemotePolicy:
         obs_mode: str = "rgb",
         control_mode: str = "pd_joint_pos",
         timeout: float = 60.0,
+        retries: int = RETRIES,
+        backoff: float = BACKOFF,
     ) -> None:
         self.uri, self.obs_mode, self.control_mode = uri, obs_mode, control_mode
+        self.timeout, self.retries, self.backoff = timeout, retries, backoff
+        self.socket: ClientConnection | None = None
         self._stack = ExitStack()
-        self.socket = self._stack.enter_context(connect(uri, max_size=None, open_timeout=timeout))
-        self.metadata = unpackb(self.socket.recv(timeout=timeout))
-        self.timeout = timeout
+        self.metadata: dict = {}
         self.chunk: list[np.ndarray] = []
         self.prompt = ""
+        self._reconnect()
+
+    def _reconnect(self) -> None:
+        """(Re)open the connection and read the server's metadata, retrying with the
+        back-off; a ``ServerError`` naming the server when every attempt failed."""
+        self.close()
+        error: Exception | None = None
+        for attempt in range(self.retries):
+            if attempt:
+                time.sleep(self.backoff * 2 ** (attempt - 1))
+            try:
+                self.socket = self._stack.enter_context(
+                    connect(self.uri, max_size=None, open_timeout=self.timeout)
+                )
+                self.metadata = unpackb(self.socket.recv(timeout=self.timeout))
+                return
+            except NETWORK_ERRORS as exc:
+                self.close()
+                error = exc
+        raise ServerError(
+            f"policy server {self.uri} unreachable after {self.retries} attempts "
+            f"({type(error).__name__}: {error})"
+        )
+
+    def _ask(self, request: bytes) -> bytes | str:
+        """The server's reply to ``request``, reconnecting once per lost connection."""
+        try:
+            self.socket.send(request)
+            return self.socket.recv(timeout=self.timeout)
+        except NETWORK_ERRORS:
+            self._reconnect()
+            try:
+                self.socket.send(request)
+                return self.socket.recv(timeout=self.timeout)
+            except NETWORK_ERRORS as exc:
+                raise ServerError(f"policy server {self.uri} lost the connection ({exc})") from exc
 
     def get_obs_mode(self) -> str:
         return self.obs_mode
@@ -88,8 +141,7 @@ class RemotePolicy:
 
     def act(self, obs) -> np.ndarray:
         if not self.chunk:
-            self.socket.send(packb({"observation": _unbatch(obs), "prompt": self.prompt}))
-            reply = self.socket.recv(timeout=self.timeout)
+            reply = self._ask(packb({"observation": _unbatch(obs), "prompt": self.prompt}))
             if isinstance(reply, str):
                 raise RuntimeError(f"policy server at {self.uri} failed: {reply}")
             actions = np.asarray(unpackb(reply)["actions"], dtype=np.float32)
@@ -98,3 +150,4 @@ class RemotePolicy:
 
     def close(self) -> None:
         self._stack.close()
+        self.socket = None

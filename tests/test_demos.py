@@ -14,6 +14,7 @@ import pytest
 from instructmove_ms.cli import main
 from instructmove_ms.demos import generate as generator
 from instructmove_ms.demos.generate import SEED_BLOCK, generate
+from instructmove_ms.files import LOCK
 
 TASK, ROBOT = "PickCategory-InstructMove", "franka"
 STEM = f"{TASK}_{ROBOT}"
@@ -98,7 +99,8 @@ def test_interrupted_run_resumes_to_exactly_n(demos, tmp_path, monkeypatch, caps
         generate(TASK, ROBOT, 4, tmp_path, shard_size=1)
     ledger = json.loads((tmp_path / f"{STEM}.ledger.json").read_text())
     assert [s["index"] for s in ledger["shards"]] == [0, 1, 2]
-    assert sorted(p.name for p in tmp_path.iterdir()) == [f"{STEM}.ledger.json", "shards"]
+    left = sorted(p.name for p in tmp_path.iterdir() if p.name != LOCK)
+    assert left == [f"{STEM}.ledger.json", "shards"], "no staging folder left behind"
     monkeypatch.undo()
     argv = ["demos", "generate", "--task", TASK, "--robot", ROBOT, "-n", "4"]
     assert main([*argv, "--out", str(tmp_path)]) == 2

@@ -19,14 +19,11 @@ folder and moved into place when complete.
 
 from __future__ import annotations
 
-import json
 import os
-import tempfile
 from dataclasses import dataclass
 from pathlib import Path
 
 import gymnasium as gym
-import h5py
 import numpy as np
 import torch
 from mani_skill.agents.controllers import PDEEPosController, PDEEPoseController
@@ -36,6 +33,8 @@ from mani_skill.utils.gym_utils import inv_scale_action
 from mani_skill.utils.wrappers import RecordEpisode
 from tqdm import tqdm
 
+from instructmove_ms.export.source import EpisodeSource, Trajectory, load_trajectory
+from instructmove_ms.files import OutputLock, clean_stale, staging, write_json
 from instructmove_ms.validation import check_choice
 
 MAX_REPEATS = 4  # converted steps per recorded step at most (a clipped delta is repeated)
@@ -172,38 +171,43 @@ def convert(
     """Convert the first ``count`` (default: all) episodes of the ``pd_joint_pos``
     trajectory ``traj_path`` to ``control_mode`` with observations ``obs_mode`` (see the module
     docstring); returns how many episodes were read and kept and the converted ``.h5``."""
-    traj = Path(traj_path)
-    if traj.suffix != ".h5" or not traj.exists():
-        raise FileNotFoundError(f"no trajectory {traj} (expected an existing .h5 file)")
     if count is not None and count < 1:
         raise ValueError(f"count must be at least 1, got {count}")
-    meta = json.loads(traj.with_suffix(".json").read_text())
-    env_info = meta["env_info"]
-    kwargs = dict(env_info["env_kwargs"])
-    if kwargs.get("control_mode", "pd_joint_pos") != "pd_joint_pos":
-        raise ValueError(f"{traj} was recorded with {kwargs['control_mode']!r}, not pd_joint_pos")
-    episodes = meta["episodes"][:count]
-    out = Path(out_dir) if out_dir is not None else traj.parent
-    out.mkdir(parents=True, exist_ok=True)
-    with tempfile.TemporaryDirectory(dir=out) as tmp:
-        converter = Converter(env_info["env_id"], kwargs, control_mode, obs_mode, tmp)
-        kept = []
-        try:
-            with h5py.File(traj) as f:
-                for episode in tqdm(episodes, desc=f"to {control_mode}", unit="episode"):
-                    reset_kwargs = dict(episode["reset_kwargs"])
-                    flags, success = converter.episode(
-                        reset_kwargs, f[f"traj_{episode['episode_id']}/actions"][()]
-                    )
-                    converter.target.flush_trajectory(save=success)
-                    if success:
-                        stages = {k: [step[k] for step in flags] for k in converter.stages}
-                        spec = converter.target.unwrapped.episode.to_dict()
-                        kept.append({"episode_id": len(kept), "spec": spec, "stages": stages})
-        finally:
-            converter.close()
-        stem = f"{traj.stem.split('.')[0]}.{converter.name}"
-        (Path(tmp) / "converted.episodes.json").write_text(json.dumps(kept, indent=1))
-        for suffix in (".h5", ".json", ".episodes.json"):
-            os.replace(Path(tmp) / f"converted{suffix}", out / f"{stem}{suffix}")
+    traj = load_trajectory(traj_path)  # read and checked whole: a fault names its file
+    if traj.control_mode != "pd_joint_pos":
+        raise ValueError(f"{traj.path} was recorded with {traj.control_mode!r}, not pd_joint_pos")
+    episodes = traj.episodes[:count]
+    out = Path(out_dir) if out_dir is not None else traj.path.parent
+    with OutputLock(out, "instructmove demos convert"):
+        clean_stale(out)
+        with staging(out) as tmp:
+            return _convert(traj, episodes, control_mode, obs_mode, out, tmp)
+
+
+def _convert(
+    traj: Trajectory,
+    episodes: tuple[EpisodeSource, ...],
+    control_mode: str,
+    obs_mode: str,
+    out: Path,
+    tmp: Path,
+) -> ConvertReport:
+    """Convert ``episodes`` of ``traj`` in the staging folder ``tmp``, then move the
+    outputs into ``out``."""
+    converter = Converter(traj.env_id, dict(traj.env_kwargs), control_mode, obs_mode, tmp)
+    kept = []
+    try:
+        for episode in tqdm(episodes, desc=f"to {control_mode}", unit="episode"):
+            flags, success = converter.episode(dict(episode.reset_kwargs), episode.actions)
+            converter.target.flush_trajectory(save=success)
+            if success:
+                stages = {k: [step[k] for step in flags] for k in converter.stages}
+                spec = converter.target.unwrapped.episode.to_dict()
+                kept.append({"episode_id": len(kept), "spec": spec, "stages": stages})
+    finally:
+        converter.close()
+    stem = f"{traj.stem.split('.')[0]}.{converter.name}"
+    write_json(tmp / "converted.episodes.json", kept)
+    for suffix in (".h5", ".json", ".episodes.json"):
+        os.replace(tmp / f"converted{suffix}", out / f"{stem}{suffix}")
     return ConvertReport(len(episodes), len(kept), out / f"{stem}.h5")

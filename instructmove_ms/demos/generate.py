@@ -5,13 +5,15 @@ Demos go into shards under ``out_dir/shards/``. Shard ``i`` tries the seeds
 ``seed0 + i * SEED_BLOCK`` onwards until it has kept its share of demos, so its content does
 not depend on how many workers run or in which order shards finish. A shard (trajectory
 ``.h5`` + ``.json`` and a sidecar ``.episodes.json`` with every kept episode's EpisodeSpec and
-per-step stage flags) is written into a temporary folder and moved into place; then the
+per-step stage flags) is written into a staging folder and moved into place; then the
 ledger ``<task>_<robot>.ledger.json`` (written atomically) records it with its seed and
 failure counts. Each seed is one scene, played as ``synthesis.synthesize_scene`` does (a
 slipped grasp is tried again with the next plan; only the kept rollout is recorded). A
 shard missing from the ledger is unfinished and is redone, so an interruption loses at most
 the shards in flight and never duplicates a demo. The finished shards are merged into
-``out_dir/<task>_<robot>.h5`` + ``.json`` + ``.episodes.json``.
+``out_dir/<task>_<robot>.h5`` + ``.json`` + ``.episodes.json``. A run holds the output
+folder's lock (a second run on it is refused, naming the first) and first removes the
+staging folders a killed run left.
 """
 
 from __future__ import annotations
@@ -19,7 +21,6 @@ from __future__ import annotations
 import json
 import multiprocessing as mp
 import os
-import tempfile
 import threading
 from collections import Counter
 from collections.abc import Callable
@@ -32,7 +33,7 @@ from mani_skill.trajectory.merge_trajectory import merge_trajectories
 from mani_skill.utils.wrappers import RecordEpisode
 from tqdm import tqdm
 
-from instructmove_ms.files import write_json
+from instructmove_ms.files import OutputLock, clean_stale, staging, write_json
 from instructmove_ms.splits import is_training_seed
 from instructmove_ms.tasks import TASKS
 from instructmove_ms.validation import check_choice
@@ -133,11 +134,11 @@ def _record(job: Job, folder: Path, progress: Progress) -> tuple[list[dict], Cou
 def run_job(job: Job, progress: Progress) -> dict:
     """Record one shard atomically into ``job.out/shards``; returns its ledger entry."""
     shards = job.out / "shards"
-    with tempfile.TemporaryDirectory(dir=job.out) as tmp:
-        episodes, failures, rollouts = _record(job, Path(tmp), progress)
-        write_json(Path(tmp) / f"{job.name}.episodes.json", episodes)
+    with staging(job.out) as tmp:
+        episodes, failures, rollouts = _record(job, tmp, progress)
+        write_json(tmp / f"{job.name}.episodes.json", episodes)
         for suffix in (".h5", ".json", ".episodes.json"):
-            os.replace(Path(tmp) / f"{job.name}{suffix}", shards / f"{job.name}{suffix}")
+            os.replace(tmp / f"{job.name}{suffix}", shards / f"{job.name}{suffix}")
     tried = len(episodes) + sum(failures.values())
     return {
         "index": job.index,
@@ -191,8 +192,16 @@ def generate(
         if value < 1:
             raise ValueError(f"{name} must be at least 1, got {value}")
     out = Path(out_dir)
-    (out / "shards").mkdir(parents=True, exist_ok=True)
     stem = f"{task}_{robot}"  # no dot: ManiSkill names replays after the first dot
+    with OutputLock(out, f"instructmove demos generate {stem}"):
+        clean_stale(out)  # what a killed run left
+        (out / "shards").mkdir(parents=True, exist_ok=True)
+        return _generate(task, robot, n, out, stem, seed0, workers, shard_size)
+
+
+def _generate(
+    task: str, robot: str, n: int, out: Path, stem: str, seed0: int, workers: int, shard_size: int
+) -> Report:
     ledger_path = out / f"{stem}.ledger.json"
     ledger = (
         json.loads(ledger_path.read_text())
@@ -261,8 +270,8 @@ def _drain(queue, tick: Progress) -> None:
 def _merge(out: Path, stem: str, names: list[str]) -> None:
     """Merge the shards into ``out/<stem>.h5`` + ``.json`` + ``.episodes.json``, each moved
     into place when complete (the sidecar last)."""
-    with tempfile.TemporaryDirectory(dir=out) as tmp:
-        merged = Path(tmp) / f"{stem}.h5"
+    with staging(out) as tmp:
+        merged = tmp / f"{stem}.h5"
         merge_trajectories(str(merged), [str(out / "shards" / f"{name}.h5") for name in names])
         os.replace(merged, out / merged.name)
         os.replace(merged.with_suffix(".json"), out / f"{stem}.json")

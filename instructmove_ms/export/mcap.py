@@ -15,6 +15,8 @@ from pathlib import Path
 
 from tqdm import tqdm
 
+from instructmove_ms.files import OutputLock, clean_stale
+
 from .metadata import episode_metadata
 from .replay import Replayer
 from .source import EpisodeSource, Trajectory, load_trajectory
@@ -95,7 +97,12 @@ def export_trajectory(
     settings = settings or ExportSettings()
     traj = load_trajectory(traj_path)
     out = Path(out_dir)
-    out.mkdir(parents=True, exist_ok=True)
+    with OutputLock(out, "instructmove export mcap"):
+        clean_stale(out)  # the files a killed run was writing
+        return _export(traj, out, workers, settings)
+
+
+def _export(traj: Trajectory, out: Path, workers: int, settings: ExportSettings) -> ExportReport:
     report = ExportReport()
     todo = []
     for ep in traj.episodes:
