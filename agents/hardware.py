@@ -22,9 +22,10 @@ class Gripper:
     closed: float
     tcp_in_grasp: sapien.Pose
 
-    def value(self, width: float) -> float:
-        """The action value that opens the fingers ``width`` metres apart."""
-        return self.offset + self.scale * min(width, self.max_width)
+    def value(self, width):
+        """The action value that opens the fingers ``width`` metres apart (a number or an
+        array of them)."""
+        return self.offset + self.scale * np.minimum(width, self.max_width)
 
     @property
     def open(self) -> float:

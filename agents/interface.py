@@ -25,6 +25,26 @@ class ArmSlots:
     gripper: int
 
 
+@dataclass(frozen=True)
+class PolicyInterface:
+    """The joint-space policy interface, the layout of the ``pd_joint_pos`` action: every
+    arm joint (``arm_joint_names`` order, rad) then one gripper value per arm (the gripper's
+    action units). ``joints`` index the robot's active joints; ``fingers`` holds each arm's
+    first finger joint (index, direction it opens); ``names`` names every dimension."""
+
+    joints: tuple[int, ...]
+    fingers: tuple[tuple[int, float], ...]
+    gripper: Gripper
+    names: tuple[str, ...]
+
+    def state(self, qpos) -> np.ndarray:
+        """The robot's configuration ``qpos`` (..., active joints) in this interface: the
+        action that holds the robot where it is."""
+        qpos = np.asarray(qpos, dtype=float)
+        grippers = [self.gripper.value(2.0 * sign * qpos[..., k]) for k, sign in self.fingers]
+        return np.concatenate([qpos[..., list(self.joints)], np.stack(grippers, axis=-1)], -1)
+
+
 class InstructMoveAgent:
     """Mixin for ManiSkill agents used by InstructMove tasks.
 
@@ -58,6 +78,31 @@ class InstructMoveAgent:
         names = list(self.arm_joint_names)
         per_arm = len(names) // len(self.tcp_links)
         return names[arm * per_arm : (arm + 1) * per_arm]
+
+    def _gripper_controllers(self) -> dict:
+        """The controllers of the current mode that drive no arm joint: one per arm."""
+        arm = set(self.arm_joint_names)
+        return {
+            key: c
+            for key, c in self.controller.controllers.items()
+            if not arm & {j.name for j in c.joints}
+        }
+
+    def policy_interface(self) -> PolicyInterface:
+        """The joint-space policy interface of this robot (see ``PolicyInterface``)."""
+        names = [j.name for j in self.robot.get_active_joints()]
+        limits = self.robot.get_qlimits()[0].cpu().numpy()
+        grippers = self._gripper_controllers()
+        fingers = []
+        for controller in grippers.values():
+            k = names.index(controller.joints[0].name)
+            fingers.append((k, float(np.sign(limits[k].sum()))))
+        return PolicyInterface(
+            joints=tuple(names.index(n) for n in self.arm_joint_names),
+            fingers=tuple(fingers),
+            gripper=self.gripper,
+            names=(*self.arm_joint_names, *grippers),
+        )
 
     def action_layout(self) -> tuple[ArmSlots, ...]:
         """Per arm, where its commands go in the action of the current control mode."""

@@ -249,6 +249,19 @@ def _cmd_export_mcap(args: argparse.Namespace) -> int:
     return 0
 
 
+def _cmd_export_lerobot(args: argparse.Namespace) -> int:
+    from instructmove_ms.export.lerobot import LeRobotSettings, export_lerobot
+
+    settings = LeRobotSettings(args.repo_id, args.width, args.height)
+    report = export_lerobot(args.traj, args.out, settings, args.workers)
+    print(
+        f"{len(report.written)} episodes written ({report.frames} frames, "
+        f"{report.bytes / 1e6:.1f} MB in {report.seconds:.0f} s), {len(report.skipped)} already "
+        f"there -> LeRobot v3.0 dataset {args.out}"
+    )
+    return 0
+
+
 def _load_policy(spec: str, obs_mode: str, control_mode: str):
     """A reference policy name, ``ws://HOST:PORT`` or ``MODULE:CLASS``."""
     import importlib
@@ -433,6 +446,18 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--height", type=int, default=None, help="camera height (default: robot's)")
     p.add_argument("--jpeg-quality", type=int, default=90, help="colour image JPEG quality")
     p.set_defaults(func=_cmd_export_mcap)
+    p = export.add_parser(
+        "lerobot", help="one LeRobot v3.0 dataset (parquet + MP4) from trajectories of one robot"
+    )
+    p.add_argument(
+        "--traj", required=True, action="append", help="trajectory .h5 (repeat for several)"
+    )
+    p.add_argument("--out", required=True, help="dataset folder (resumable)")
+    p.add_argument("--repo-id", required=True, help="the dataset's name, e.g. me/instructmove")
+    p.add_argument("--width", type=int, default=224, help="camera width")
+    p.add_argument("--height", type=int, default=224, help="camera height")
+    p.add_argument("--workers", type=int, default=1, help="rendering processes")
+    p.set_defaults(func=_cmd_export_lerobot)
     assets = sub.add_parser("assets", help="the object library").add_subparsers(
         dest="assets_command", required=True
     )

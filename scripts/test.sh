@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
-# Set the machine up (idempotent) and run the linter and the test suite.
+# Set the machine up (idempotent) and run the linter and the test suite (which loads our
+# LeRobot export with the real lerobot in its own environment, built here once).
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 bash scripts/setup.sh --dev
+bash scripts/lerobot_env.sh  # the real LeRobot, isolated, to load our exported datasets
 py="${PYTHON:-python3}"
 "$py" -m ruff check .
 "$py" -m pytest -q "$@"

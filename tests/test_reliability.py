@@ -143,6 +143,10 @@ def _bad_inputs(tmp_path: Path, demo: Path) -> dict[str, tuple[list[str], str]]:
             "'x-1'",
         ),
         "truncated h5": ([*convert, str(truncated), *out], str(truncated)),
+        "truncated h5 to lerobot": (
+            ["export", "lerobot", "--traj", str(truncated), *out, "--repo-id", "me/x"],
+            str(truncated),
+        ),
         "malformed json": ([*convert, str(malformed), *out], str(malformed.parent)),
     }
 

@@ -7,9 +7,8 @@ MCAP already exists are skipped; each file is written atomically.
 from __future__ import annotations
 
 import dataclasses
-import multiprocessing
+import functools
 import time
-from concurrent.futures import ProcessPoolExecutor, as_completed
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -17,6 +16,7 @@ from tqdm import tqdm
 
 from instructmove_ms.files import OutputLock, clean_stale
 
+from .jobs import run_jobs
 from .metadata import episode_metadata
 from .replay import Replayer
 from .source import EpisodeSource, Trajectory, load_trajectory
@@ -71,19 +71,6 @@ class EpisodeConverter:
         self.replayer.close()
 
 
-_WORKER: EpisodeConverter | None = None
-
-
-def _init_worker(traj: Trajectory, settings: ExportSettings) -> None:
-    global _WORKER
-    _WORKER = EpisodeConverter(traj, settings)
-
-
-def _convert_in_worker(ep: EpisodeSource, path: Path) -> int:
-    assert _WORKER is not None, "worker not initialised"
-    return _WORKER.convert(ep, path)
-
-
 def export_trajectory(
     traj_path: str | Path,
     out_dir: str | Path,
@@ -115,35 +102,11 @@ def _export(traj: Trajectory, out: Path, workers: int, settings: ExportSettings)
     with tqdm(
         total=len(traj.episodes), initial=len(report.skipped), desc=traj.stem, unit="episode"
     ) as bar:
-        for path, size in _run(traj, settings, todo, workers):
+        shell = dataclasses.replace(traj, episodes=())  # what each worker needs to pickle
+        make = functools.partial(EpisodeConverter, shell, settings)
+        for (_, path), size in run_jobs(make, todo, workers):
             report.written.append(path)
             report.bytes += size
             bar.update(1)
     report.seconds = time.perf_counter() - start
     return report
-
-
-def _run(traj: Trajectory, settings: ExportSettings, todo: list, workers: int):
-    """Yields (path, bytes) per converted episode, in completion order."""
-    if not todo:
-        return
-    if workers == 1:
-        converter = EpisodeConverter(traj, settings)
-        try:
-            for ep, path in todo:
-                yield path, converter.convert(ep, path)
-        finally:
-            converter.close()
-        return
-    context = multiprocessing.get_context("spawn")
-    shell = dataclasses.replace(traj, episodes=())
-    with ProcessPoolExecutor(
-        min(workers, len(todo)), context, initializer=_init_worker, initargs=(shell, settings)
-    ) as pool:
-        futures = {pool.submit(_convert_in_worker, ep, path): path for ep, path in todo}
-        try:
-            for future in as_completed(futures):
-                yield futures[future], future.result()
-        finally:
-            for future in futures:
-                future.cancel()

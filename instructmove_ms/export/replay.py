@@ -20,13 +20,15 @@ import sapien
 import torch
 from mani_skill.sensors.camera import Camera
 
+from instructmove_ms.agents.interface import PolicyInterface
+
 from .source import EpisodeSource, Trajectory, TrajectoryError
 
 
 @dataclass(frozen=True)
 class CameraFrame:
     rgb: np.ndarray  # (H, W, 3) uint8
-    depth_mm: np.ndarray  # (H, W) uint16, z depth in millimetres, 0 where nothing was hit
+    depth_mm: np.ndarray | None  # (H, W) uint16, z depth in mm, 0 where nothing was hit
     intrinsic: np.ndarray  # (3, 3) OpenCV camera matrix
     pose: np.ndarray  # (7,) optical frame in the world: x, y, z, qw, qx, qy, qz
 
@@ -171,11 +173,18 @@ class Replayer:
             efforts.append(self._effort(gains))
         return self.rig(), _plain(info), np.asarray(efforts)
 
-    def frames(self, ep: EpisodeSource, efforts: np.ndarray) -> Iterator[Frame]:
-        """Every recorded state of ``ep`` (after :meth:`start`), rendered."""
+    def policy_interface(self) -> PolicyInterface:
+        """The robot's joint-space policy interface (the state and action layout)."""
+        return self._u.agent.policy_interface()
+
+    def frames(
+        self, ep: EpisodeSource, efforts: np.ndarray, steps: int | None = None, depth: bool = True
+    ) -> Iterator[Frame]:
+        """The first ``steps`` (default: every) recorded states of ``ep`` (after
+        :meth:`start`), rendered (colour, and depth unless ``depth`` is False)."""
         u = self._u
         robot = u.agent.robot
-        for k in range(ep.steps + 1):
+        for k in range(ep.steps + 1 if steps is None else steps):
             self._restore(ep, k)
             yield Frame(
                 step=k,
@@ -184,10 +193,10 @@ class Replayer:
                 effort=efforts[k],
                 links=np.stack([_row(link.pose.raw_pose) for link in robot.get_links()]),
                 objects=np.array([_row(obj.pose.raw_pose) for obj in u.objects]).reshape(-1, 7),
-                cameras=self._render(),
+                cameras=self._render(depth),
             )
 
-    def _render(self) -> dict[str, CameraFrame]:
+    def _render(self, depth: bool) -> dict[str, CameraFrame]:
         u = self._u
         u.scene.update_render(update_sensors=True, update_human_render_cameras=False)
         u.capture_sensor_data()
@@ -196,12 +205,14 @@ class Replayer:
         for name, sensor in u.scene.sensors.items():
             if not isinstance(sensor, Camera):
                 continue
-            obs = sensor.get_obs(rgb=True, depth=True, position=False, segmentation=False)
+            obs = sensor.get_obs(rgb=True, depth=depth, position=False, segmentation=False)
             world_to_cam = np.eye(4)
             world_to_cam[:3] = params[name]["extrinsic_cv"][0].cpu().numpy()
             out[name] = CameraFrame(
                 rgb=obs["rgb"][0].cpu().numpy(),
-                depth_mm=obs["depth"][0, ..., 0].cpu().numpy().clip(min=0).astype(np.uint16),
+                depth_mm=obs["depth"][0, ..., 0].cpu().numpy().clip(min=0).astype(np.uint16)
+                if depth
+                else None,
                 intrinsic=params[name]["intrinsic_cv"][0].cpu().numpy().astype(np.float64),
                 pose=_pose_of_matrix(np.linalg.inv(world_to_cam)),
             )

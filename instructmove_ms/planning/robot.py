@@ -15,7 +15,7 @@ import numpy as np
 import sapien.physx as physx
 
 from instructmove_ms.agents.hardware import Gripper, JointLimits
-from instructmove_ms.agents.interface import ArmSlots
+from instructmove_ms.agents.interface import ArmSlots, PolicyInterface
 
 from .collision import Geometry, body_geometry
 
@@ -41,8 +41,10 @@ class ArmModel:
 class RobotModel:
     """The robot's kinematic tree (``parent``: child link -> parent link; ``joint_child``:
     joint -> the link it moves), the collision ``geometry`` of every link that has one, a
-    pinocchio ``model``, the active joints' limits, its arms and hardware, the ``pd_joint_pos``
-    action size (0 in other control modes) and the rest configuration."""
+    pinocchio ``model``, the active joints' limits, its arms and hardware, its joint-space
+    policy ``interface`` (the ``pd_joint_pos`` action layout), whether the agent runs
+    ``pd_joint_pos`` (``joint_control``: only then can plans be played) and the rest
+    configuration."""
 
     uid: str
     links: tuple[str, ...]
@@ -56,7 +58,8 @@ class RobotModel:
     arms: tuple[ArmModel, ...]
     gripper: Gripper
     limits: JointLimits
-    action_size: int
+    interface: PolicyInterface
+    joint_control: bool
     rest: np.ndarray
 
     @classmethod
@@ -109,21 +112,17 @@ class RobotModel:
             arms=tuple(arms),
             gripper=agent.gripper,
             limits=agent.joint_limits.faster(agent.demo_pace),
-            action_size=agent.action_space.shape[-1] if joint_control else 0,
+            interface=agent.policy_interface(),
+            joint_control=joint_control,
             rest=np.asarray(agent.keyframes["rest"].qpos, dtype=float),
         )
 
     def hold(self, qpos: np.ndarray) -> np.ndarray:
         """The ``pd_joint_pos`` action that keeps the robot at ``qpos``: every arm joint at
         its position, every gripper at its current opening."""
-        if not self.action_size:
+        if not self.joint_control:
             raise ValueError("planned actions need the pd_joint_pos control mode")
-        action = np.zeros(self.action_size)
-        for arm in self.arms:
-            action[list(arm.slots.command)] = [qpos[self.joints.index(n)] for n in arm.joints]
-            k, sign = arm.fingers[0]
-            action[arm.slots.gripper] = self.gripper.value(2.0 * sign * qpos[k])
-        return action
+        return self.interface.state(qpos)
 
 
 def _drives_arm(agent, controller) -> bool:
