@@ -1,15 +1,19 @@
-"""MCAP export speed against ManiSkill's own replay of the same trajectory to rgbd.
+"""Export speed (MCAP and LeRobot) against ManiSkill's own replay of the same trajectory.
 
-Generates a demo trajectory (or takes ``--traj``), then times, each in a fresh process and at
-the robot's default camera resolution:
+Generates a demo trajectory (or takes ``--traj``), then times, each in a fresh process:
 
 - baseline: ``python -m mani_skill.trajectory.replay_trajectory -o rgbd --use-env-states
-  --save-traj`` (replays the recorded states and stores the rgbd observations in an .h5);
-- ours: ``instructmove export mcap`` (renders the same cameras from the same states and
-  writes one MCAP per episode: JPEG colour, PNG depth, joints, transforms, metadata).
+  --save-traj`` (replays the recorded states and stores the rgbd observations in an .h5), at
+  the robot's default camera resolution;
+- mcap: ``instructmove export mcap`` (renders the same cameras from the same states and
+  writes one MCAP per episode: JPEG colour, PNG depth, joints, transforms, metadata), same
+  resolution;
+- lerobot: ``instructmove export lerobot`` at the same resolution (colour only, AV1 video,
+  parquet frames, LeRobot's metadata and statistics), and lerobot-224 at its default
+  224 x 224.
 
-The two alternate ``--repeats`` times (timings vary with load); medians are reported:
-episodes/min, rendered states/s and output MB/s of both, and the ratios ours/baseline.
+They alternate ``--repeats`` times (timings vary with load); medians are reported:
+episodes/min, rendered states/s and output MB/s of each, and the ratios to the baseline.
 """
 
 from __future__ import annotations
@@ -25,6 +29,7 @@ import time
 from pathlib import Path
 
 TASK, ROBOT = "PickCategory-InstructMove", "franka"
+DEFAULT = (160, 90)  # the robots' default camera resolution
 
 
 def timed(cmd: list[str], cwd: Path) -> float:
@@ -44,7 +49,7 @@ def report(name: str, seconds: float, episodes: int, states: int, size: int) -> 
         mb_per_s=size / 1e6 / seconds,
     )
     print(
-        f"{name:9s} {seconds:7.1f} s  {row['episodes_per_min']:6.2f} episodes/min  "
+        f"{name:11s} {seconds:7.1f} s  {row['episodes_per_min']:6.2f} episodes/min  "
         f"{row['states_per_s']:6.1f} states/s  {size / 1e6:7.1f} MB -> {row['mb_per_s']:5.2f} MB/s"
     )
     return row
@@ -75,30 +80,41 @@ def main() -> None:
         replay = [sys.executable, "-m", "mani_skill.trajectory.replay_trajectory"]
         replay += ["--traj-path", "input.h5", "-o", "rgbd", "-b", "physx_cpu"]
         replay += ["--use-env-states", "--save-traj"]
-        export = [sys.executable, "-m", "instructmove_ms.cli", "export", "mcap"]
-        export += ["--traj", "input.h5", "--out", "mcap", "--workers", str(args.workers)]
+        cli = [sys.executable, "-m", "instructmove_ms.cli", "export"]
+        common = ["--traj", "input.h5", "--workers", str(args.workers)]
+        size = ["--width", str(DEFAULT[0]), "--height", str(DEFAULT[1])]
+        lerobot = [*cli, "lerobot", *common, "--repo-id", "bench/demos"]
+        exports = {
+            "mcap": [*cli, "mcap", *common, "--out", "mcap"],
+            "lerobot": [*lerobot, *size, "--out", "lerobot"],
+            "lerobot-224": [*lerobot, "--out", "lerobot-224"],
+        }
         replayed = work / "input.rgbd.pd_joint_pos.physx_cpu.h5"
-        mcap = work / "mcap"
-        times: dict[str, list[float]] = {"baseline": [], "mcap": []}
+        times: dict[str, list[float]] = {name: [] for name in ("baseline", *exports)}
         for _ in range(args.repeats):
             replayed.unlink(missing_ok=True)
             times["baseline"].append(timed(replay, work))
-            shutil.rmtree(mcap, ignore_errors=True)  # else the export resumes
-            times["mcap"].append(timed(export, work))
-        sizes = {
-            "baseline": replayed.stat().st_size,
-            "mcap": sum(p.stat().st_size for p in mcap.glob("*.mcap")),
-        }
+            for name, command in exports.items():
+                shutil.rmtree(work / name, ignore_errors=True)  # else the export resumes
+                times[name].append(timed(command, work))
+        sizes = {"baseline": replayed.stat().st_size}
+        sizes.update({name: folder_size(work / name) for name in exports})
         rows = {
             name: report(name, statistics.median(t), episodes, states, sizes[name])
             for name, t in times.items()
         }
-    base, ours = rows["baseline"], rows["mcap"]
-    print(
-        f"ratio mcap/baseline: {ours['episodes_per_min'] / base['episodes_per_min']:.2f}x "
-        f"episodes/min, {ours['mb_per_s'] / base['mb_per_s']:.2f}x MB/s; "
-        f"output {ours['size'] / base['size']:.3f}x the size"
-    )
+    base = rows["baseline"]
+    for name in exports:
+        ours = rows[name]
+        print(
+            f"ratio {name}/baseline: {ours['episodes_per_min'] / base['episodes_per_min']:.2f}x "
+            f"episodes/min, {ours['mb_per_s'] / base['mb_per_s']:.2f}x MB/s; "
+            f"output {ours['size'] / base['size']:.3f}x the size"
+        )
+
+
+def folder_size(folder: Path) -> int:
+    return sum(p.stat().st_size for p in folder.rglob("*") if p.is_file())
 
 
 if __name__ == "__main__":

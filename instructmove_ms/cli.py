@@ -262,7 +262,16 @@ def _cmd_export_lerobot(args: argparse.Namespace) -> int:
     return 0
 
 
-def _load_policy(spec: str, obs_mode: str, control_mode: str):
+def _cmd_serve_replay(args: argparse.Namespace) -> int:
+    from instructmove_ms.serving import DatasetReplayPolicy, serve
+
+    policy = DatasetReplayPolicy(args.dataset, args.chunk)
+    print(f"serving the replay of {args.dataset} on ws://{args.host}:{args.port}", flush=True)
+    serve(policy, args.host, args.port, {"policy": "dataset replay", "dataset": args.dataset})
+    return 0
+
+
+def _load_policy(spec: str, args: argparse.Namespace):
     """A reference policy name, ``ws://HOST:PORT`` or ``MODULE:CLASS``."""
     import importlib
 
@@ -273,7 +282,13 @@ def _load_policy(spec: str, obs_mode: str, control_mode: str):
     if spec.startswith(("ws://", "wss://")):
         from instructmove_ms.remote import RemotePolicy
 
-        return RemotePolicy(spec, obs_mode=obs_mode, control_mode=control_mode)
+        return RemotePolicy(
+            spec,
+            obs_format=args.obs_format,
+            control_mode=args.control_mode,
+            replan_steps=args.replan_steps,
+            obs_mode=args.obs_mode,
+        )
     module, _, name = spec.partition(":")
     if not name:
         raise ValueError(
@@ -300,8 +315,12 @@ def _eval_configs(args: argparse.Namespace):
     from instructmove_ms import heldout
     from instructmove_ms.episode import CONDITIONS
 
-    if args.config:
-        config = heldout.EvaluatorConfig.load(Path(args.config))
+    if args.config or args.traj:
+        config = (
+            heldout.EvaluatorConfig.load(Path(args.config))
+            if args.config
+            else heldout.EvaluatorConfig.from_trajectory(args.traj)
+        )
         yield Path(args.out), dataclasses.replace(config, episodes=config.episodes[: args.episodes])
         return
     conditions = CONDITIONS if args.condition == "all" else (args.condition,)
@@ -313,6 +332,24 @@ def _eval_configs(args: argparse.Namespace):
         )
 
 
+def _check_format(args: argparse.Namespace, config) -> None:
+    """The observation format of a served policy must fit the config's robot."""
+    from instructmove_ms.obs_formats import FORMATS
+    from instructmove_ms.validation import check_choice
+
+    check_choice("--obs-format", args.obs_format, FORMATS)
+    robot = config.env_kwargs.get("robot_uids")
+    fits = FORMATS[args.obs_format].robots
+    served = args.policy.startswith(("ws://", "wss://"))
+    if served and args.num_envs > 1:
+        raise ValueError("a served policy takes one episode at a time: --num-envs 1")
+    if served and fits and robot not in fits:
+        raise ValueError(
+            f"--obs-format {args.obs_format} is for {', '.join(fits)}, not {robot!r}; "
+            "instructmove and maniskill fit every robot"
+        )
+
+
 def _cmd_eval(args: argparse.Namespace) -> int:
     from pathlib import Path
 
@@ -321,8 +358,8 @@ def _cmd_eval(args: argparse.Namespace) -> int:
     from instructmove_ms.metrics import markdown_table
     from instructmove_ms.video import VideoSettings
 
-    if not (args.task or args.config):
-        raise ValueError("eval needs --task or --config")
+    if sum(map(bool, (args.task, args.config, args.traj))) != 1:
+        raise ValueError("eval needs one of --task, --config or --traj")
     if args.episodes is not None and args.episodes < 1:
         raise ValueError(f"--episodes must be at least 1, got {args.episodes}")
     if args.write_config:
@@ -340,12 +377,15 @@ def _cmd_eval(args: argparse.Namespace) -> int:
     configs = list(_eval_configs(args))  # every input checked before the policy starts
     for _, config in configs:
         config.check()
-    policy = _load_policy(args.policy, args.obs_mode, args.control_mode)
+        _check_format(args, config)
+    policy = _load_policy(args.policy, args)
     rows = []
     for out, config in configs:
         summary = evaluate_config(policy, config, out, args.num_envs, args.sim_backend, video)
         rows += summary["groups"]
     print(markdown_table(rows))
+    if "policy" in summary:  # a served policy: its server's own timing
+        print(f"policy: {json.dumps(summary['policy'])}")
     return 0
 
 
@@ -432,7 +472,18 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--sim-backend", default="auto", help="ManiSkill sim backend")
     p.add_argument("--video", action="store_true", help="an MP4 per episode in OUT/videos")
     p.add_argument("--video-first", type=int, default=None, help="videos of the first K only")
-    p.add_argument("--obs-mode", default="rgb", help="observation mode of a remote policy")
+    p.add_argument(
+        "--traj", default=None, help="evaluate the episodes of a recorded trajectory (demos)"
+    )
+    p.add_argument(
+        "--obs-format",
+        default="instructmove",
+        help="what a served policy gets: instructmove, droid (Franka), aloha (PiperX), maniskill",
+    )
+    p.add_argument(
+        "--replan-steps", type=int, default=5, help="actions of a served chunk played per request"
+    )
+    p.add_argument("--obs-mode", default="rgb", help="observation mode (--obs-format maniskill)")
     p.add_argument("--control-mode", default="pd_joint_pos", help="control mode of a remote policy")
     p.set_defaults(func=_cmd_eval)
     export = sub.add_parser("export", help="convert recorded trajectories").add_subparsers(
@@ -458,6 +509,14 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--height", type=int, default=224, help="camera height")
     p.add_argument("--workers", type=int, default=1, help="rendering processes")
     p.set_defaults(func=_cmd_export_lerobot)
+    p = sub.add_parser(
+        "serve-replay", help="serve a LeRobot dataset's recorded actions with openpi's server"
+    )
+    p.add_argument("--dataset", required=True, help="a LeRobot dataset of ours")
+    p.add_argument("--host", default="127.0.0.1")
+    p.add_argument("--port", type=int, default=8000)
+    p.add_argument("--chunk", type=int, default=50, help="actions per answer")
+    p.set_defaults(func=_cmd_serve_replay)
     assets = sub.add_parser("assets", help="the object library").add_subparsers(
         dest="assets_command", required=True
     )

@@ -2,9 +2,10 @@
 
 The episodes come from an evaluator config (ManiSkill's convention, see ``heldout``): a
 stored set re-rendered for an instruction condition (same scene, other instruction), or a
-config file. Each episode's env is reset to its spec, the policy acts for the horizon
-(stopping early once a task with a target has succeeded: stages latch) and the info of the
-last step is scored. Results append to ``episodes.jsonl`` as they finish, so an interrupted
+config file. Each episode's env is reset to its spec, the policy acts for the whole horizon
+(ManiSkill's convention) and the info of the last step is scored: the latched stages and
+``success`` (success once), and ``success_at_end`` (the success condition holds at the last
+step). Results append to ``episodes.jsonl`` as they finish, so an interrupted
 run resumes where it stopped; the reports (see ``reports``) are rewritten at the end.
 
 Each episode has a seed of its own (its ``reset_kwargs`` seed): a policy whose ``reset``
@@ -21,13 +22,14 @@ be reached) is not the policy's: the run stops there and the episodes in flight 
 unscored, so that a resume runs them.
 
 ``num_envs > 1`` runs that many episodes at once, one per sub-scene of ManiSkill's GPU
-simulation: the policy gets batched observations and returns (num_envs, dim) actions, each
-sub-scene's result is latched when it finishes, and a policy failure fails the batch's
-unfinished episodes. The CPU simulation runs one env per process.
+simulation: the policy gets batched observations and returns (num_envs, dim) actions; a
+policy failure fails the batch's episodes that had not succeeded yet. The CPU simulation
+runs one env per process.
 """
 
 from __future__ import annotations
 
+import dataclasses
 import inspect
 import json
 import re
@@ -98,22 +100,24 @@ class _Runner:
     video: VideoSettings | None
     filmed: set
 
-    def _frames(self, frames: list[list[np.ndarray]], latched: list[dict | None]) -> None:
-        """Add a rendered frame to each filmed, unfinished episode."""
-        if any(frames[i] is not None and latched[i] is None for i in range(len(frames))):
+    def _frames(self, frames: list[list[np.ndarray] | None]) -> None:
+        """Add a rendered frame to each filmed episode."""
+        if any(film is not None for film in frames):
             images = _numpy(self.env.render())
             for i, film in enumerate(frames):
-                if film is not None and latched[i] is None:
+                if film is not None:
                     film.append(images[i])
 
     def _play(
-        self, batch: list[ConfigEpisode], obs: Any, info: dict, frames: list, latched: list
+        self, batch: list[ConfigEpisode], obs: Any, frames: list, first: list, last: list
     ) -> None:
-        """Step the policy until every episode finished, latching the info each finished
-        with into ``latched`` (a failure leaves the unfinished ones None)."""
+        """Step the policy for the whole horizon (ManiSkill's convention: no early end, so
+        that success at the end is measured), keeping each episode's info at its first
+        success in ``first`` and at the last step in ``last`` (a failure leaves ``last``
+        None)."""
         u = self.env.unwrapped
         dim = u.single_action_space.shape[0]
-        self._frames(frames, latched)
+        self._frames(frames)
         if hasattr(self.policy, "bind"):
             guarded("bind", self.policy.bind, self.env)
         if takes_seed(self.policy.reset):
@@ -122,41 +126,44 @@ class _Runner:
             guarded("reset", lambda: self.policy.reset(obs, seed=seed))
         else:
             guarded("reset", self.policy.reset, obs)
+        info: dict = {}
         for _ in range(self.horizon):
             action = check_action(guarded("act", self.policy.act, obs), dim, u.num_envs)
             obs, _, _, _, info = self.env.step(action)
-            self._frames(frames, latched)
+            self._frames(frames)
             for i, episode in enumerate(batch):
-                if latched[i] is None and episode.spec.target >= 0 and bool(info["success"][i]):
-                    latched[i] = _sub_info(info, i)
-            if all(x is not None for x in latched):
-                break
-        for i in range(len(latched)):
-            if latched[i] is None:
-                latched[i] = _sub_info(info, i)
+                if first[i] is None and episode.spec.target >= 0 and bool(info["success"][i]):
+                    first[i] = _sub_info(info, i)
+        for i in range(len(batch)):
+            last[i] = _sub_info(info, i)
 
     def run(self, batch: list[ConfigEpisode]) -> list[dict]:
         """The result rows of ``batch`` (at most one episode per sub-scene)."""
         u = self.env.unwrapped
         padded = batch + [batch[-1]] * (u.num_envs - len(batch))
-        obs, info = self.env.reset(
+        obs, _ = self.env.reset(
             seed=[e.seed for e in padded],
             options={"episode": [e.spec.to_dict() for e in padded]},
         )
         frames = [[] if e.episode_id in self.filmed else None for e in batch]
-        latched: list[dict | None] = [None] * len(batch)
+        first: list[dict | None] = [None] * len(batch)
+        last: list[dict | None] = [None] * len(batch)
         error = None
         try:
-            self._play(batch, obs, info, frames, latched)
+            self._play(batch, obs, frames, first, last)
         except PolicyError as exc:
             error = str(exc)
-            self._log_error([e for e, x in zip(batch, latched, strict=True) if x is None], exc)
+            self._log_error([e for e, x in zip(batch, first, strict=True) if x is None], exc)
         rows = []
-        for episode, last, film in zip(batch, latched, frames, strict=True):
-            if last is None:
-                result, failed = EpisodeResult.failed(episode.spec, u.task.stages), error
+        for episode, once, end, film in zip(batch, first, last, frames, strict=True):
+            stages, catalog = u.task.stages, u.catalog
+            if end is not None:  # the latched stages of the last step, and success at the end
+                result, failed = score_episode(episode.spec, end, stages, catalog), None
+            elif once is not None:  # succeeded before the policy failed: success at the end
+                result, failed = score_episode(episode.spec, once, stages, catalog), None
+                result = dataclasses.replace(result, success_at_end=None)  # is not known
             else:
-                result, failed = score_episode(episode.spec, last, u.task.stages, u.catalog), None
+                result, failed = EpisodeResult.failed(episode.spec, stages), error
             rows.append({"episode_id": episode.episode_id, **result.to_dict(), "error": failed})
             if film:
                 self._write_video(episode, film, result, failed)
@@ -193,6 +200,9 @@ def _make_env(
         render = {"render_mode": "rgb_array", "human_render_camera_configs": video.camera}
     else:
         render = {"render_backend": "none"} if obs_mode in STATE_MODES else {}
+    cameras = getattr(policy, "get_sensor_configs", lambda: None)()
+    if cameras:  # the resolution the policy's images come from
+        render["sensor_configs"] = cameras
     return gym.make(
         config.env_id,
         **{
@@ -250,7 +260,8 @@ def _evaluate(
                         bar.update()
         finally:
             env.close()
-    return write_reports(out, [done[e.episode_id] for e in config.episodes if e.episode_id in done])
+    rows = [done[e.episode_id] for e in config.episodes if e.episode_id in done]
+    return write_reports(out, rows, getattr(policy, "stats", dict)())
 
 
 def evaluate(

@@ -129,6 +129,24 @@ class EvaluatorConfig:
             episodes=tuple(episodes),
         )
 
+    @classmethod
+    def from_trajectory(cls, path: str | Path) -> EvaluatorConfig:
+        """The episodes of a recorded trajectory (a demo file): each reset to its recorded
+        seed and spec, the recording's robot and split, its episode ids."""
+        from .export.source import load_trajectory
+
+        traj = load_trajectory(path)
+        kwargs = {k: traj.env_kwargs[k] for k in ("robot_uids", "split") if k in traj.env_kwargs}
+        return cls(
+            env_id=traj.env_id,
+            max_episode_steps=TASKS[traj.env_id].max_episode_steps,
+            env_kwargs=kwargs,
+            episodes=tuple(
+                ConfigEpisode(ep.episode_id, ep.seed, EpisodeSpec.from_dict(ep.spec))
+                for ep in traj.episodes
+            ),
+        )
+
     def write(self, path: Path) -> Path:
         """Write the config as JSON, atomically."""
         return write_json(path, self.to_dict(), indent=2)

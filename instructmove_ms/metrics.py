@@ -37,6 +37,12 @@ class EpisodeResult:
     grounding_error: bool  # a distractor was reached or lifted first
     control_error: bool  # the right object was reached, the task not completed
     shared: tuple[str, ...] = field(default=())  # attributes a wrong choice shares with target
+    #: the success condition held at the last step (None: not known, the run ended early)
+    success_at_end: bool | None = None
+    #: what the policy went for first (lifted, else reached): the instruction's ``target``,
+    #: the ``original`` target the scene was made for (another than the instruction's under
+    #: the alternative_target condition), another ``candidate``, or ``none``
+    choice: str = "none"
 
     @classmethod
     def failed(cls, spec: EpisodeSpec, stages: StageSchema) -> EpisodeResult:
@@ -50,6 +56,7 @@ class EpisodeResult:
             any_lift=False,
             grounding_error=False,
             control_error=False,
+            success_at_end=False,
         )
 
     @classmethod
@@ -92,6 +99,7 @@ def score_episode(
     flags = {k: bool(_value(info, k)) for k in stages.names}
     first = [int(_value(info, k)) for k in ("reached_object", "lifted_object")]
     wrong = next((k for k in first if k >= 0 and k != spec.target), -1)
+    went = first[1] if first[1] >= 0 else first[0]
     has_target = spec.target >= 0
     grounding = has_target and wrong >= 0
     reached = flags[stages.reached]
@@ -106,7 +114,20 @@ def score_episode(
         grounding_error=grounding,
         control_error=has_target and reached and not success and not grounding,
         shared=shared_attributes(catalog, spec, wrong) if grounding else (),
+        success_at_end=bool(_value(info, "success_now")) if "success_now" in info else None,
+        choice=choice(spec, went),
     )
+
+
+def choice(spec: EpisodeSpec, k: int) -> str:
+    """What object ``k`` is to episode ``spec`` (see ``EpisodeResult.choice``)."""
+    if k < 0:
+        return "none"
+    if k == spec.target:
+        return "target"
+    if spec.objects[k].role == "target":  # the scene's own target, not the instruction's
+        return "original"
+    return "candidate"
 
 
 def wilson(successes: int, n: int, z: float = 1.96) -> tuple[float, float]:
@@ -141,9 +162,19 @@ def aggregate(
             grounding_error=sum(r.grounding_error for r in group),
             control_error=sum(r.control_error for r in group),
         )
+        known = [r.success_at_end for r in group if r.success_at_end is not None]
         for name, k in rates.items():
             row[name] = k / n
             row[f"{name}_ci"] = wilson(k, n)
+        if known:
+            row["success_at_end"] = sum(known) / len(known)
+            row["success_at_end_ci"] = wilson(sum(known), len(known))
+        if row.get("condition") == "alternative_target":
+            # of the episodes that went for one of the two, those that took the object the
+            # instruction names rather than the one the scene was made for
+            followed, original = (sum(r.choice == c for r in group) for c in ("target", "original"))
+            row["language_following"] = followed / max(1, followed + original)
+            row["language_following_ci"] = wilson(followed, followed + original)
         row["stage_score"] = sum(r.stage_score for r in group) / n
         row["chance"] = sum(1.0 / r.num_goals for r in group) / n
         rows.append(row)
@@ -159,7 +190,8 @@ def markdown_table(
     rows: list[dict], keys: tuple[str, ...] = ("family", "robot", "split", "condition")
 ) -> str:
     """The aggregates as a markdown table in the paper's format, with any-object reach and
-    lift (the scores of the no-target conditions) and the error split."""
+    lift (the scores of the no-target conditions), the error split, success at the end of
+    the horizon and (alternative_target) the language-following rate."""
     head = (
         *keys,
         "episodes",
@@ -168,21 +200,32 @@ def markdown_table(
         "any reach / lift",
         "grounding errors",
         "control errors",
+        "success at end",
+        "language following [95% CI]",
     )
     lines = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
     for row in rows:
-        lo, hi = row["success_ci"]
         cells = [
             *(str(row[k]) for k in keys),
             str(row["episodes"]),
             paper_cell(row),
-            f"{row['success']:.2f} [{lo:.2f}, {hi:.2f}]",
+            _rate(row, "success"),
             f"{row['any_reach']:.2f} / {row['any_lift']:.2f}",
             f"{row['grounding_error']:.2f}",
             f"{row['control_error']:.2f}",
+            f"{row['success_at_end']:.2f}" if "success_at_end" in row else "-",
+            _rate(row, "language_following"),
         ]
         lines.append("| " + " | ".join(cells) + " |")
     return "\n".join(lines)
+
+
+def _rate(row: dict, name: str) -> str:
+    """``rate [lo, hi]`` of ``name`` in ``row``, or "-" where the group has none."""
+    if name not in row:
+        return "-"
+    lo, hi = row[f"{name}_ci"]
+    return f"{row[name]:.2f} [{lo:.2f}, {hi:.2f}]"
 
 
 def comparison_table(

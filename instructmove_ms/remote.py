@@ -5,7 +5,10 @@ each request is a msgpack map of numpy arrays (the observation, with the instruc
 ``prompt``) and each reply a map whose ``actions`` is one action or a chunk of them (the
 client plays a chunk out before asking again). Arrays travel as maps with ``__ndarray__``,
 ``data``, ``dtype`` and ``shape``; a text frame from the server is an error report (the
-policy's failure).
+policy's failure). The observation's keys and units, and what the actions mean, follow a
+named format (``obs_formats``); the client plays the first ``replan_steps`` actions of each
+chunk before asking again (openpi's examples replan every 5 steps) and keeps the server's
+own timing (its replies' ``server_timing``).
 
 A server that cannot be reached, or a connection that closes or times out, is not the
 policy's failure: the client reconnects with a bounded back-off (``RETRIES`` attempts,
@@ -25,8 +28,12 @@ import torch
 from websockets.exceptions import ConnectionClosed
 from websockets.sync.client import ClientConnection, connect
 
+from .agents.interface import PolicyInterface
 from .guard import ServerError
+from .obs_formats import FORMATS
+from .validation import check_choice
 
+REPLAN_STEPS = 5  # actions of a chunk played before asking again, as openpi's examples do
 RETRIES = 5  # connection attempts before the server counts as gone
 BACKOFF = 0.5  # seconds before the second attempt; doubled for each further one
 #: What a lost or unreachable server raises (refused, reset, closed, timed out).
@@ -64,27 +71,31 @@ def unpackb(data: bytes) -> Any:
     return msgpack.unpackb(data, object_hook=_decode)
 
 
-def _unbatch(obs: Any) -> Any:
-    """ManiSkill's batched observation (one sub-scene) as plain numpy arrays."""
-    if isinstance(obs, dict):
-        return {k: _unbatch(v) for k, v in obs.items()}
-    return np.asarray(obs.detach().cpu().numpy() if isinstance(obs, torch.Tensor) else obs)[0]
-
-
 class RemotePolicy:
-    """Evaluator-convention policy that asks a websocket policy server for actions."""
+    """Evaluator-convention policy that asks a websocket policy server for actions, in the
+    observation format ``obs_format`` (see ``obs_formats``)."""
 
     def __init__(
         self,
         uri: str,
-        obs_mode: str = "rgb",
+        obs_format: str = "instructmove",
         control_mode: str = "pd_joint_pos",
+        replan_steps: int = REPLAN_STEPS,
+        obs_mode: str = "rgb",
         timeout: float = 60.0,
         retries: int = RETRIES,
         backoff: float = BACKOFF,
     ) -> None:
-        self.uri, self.obs_mode, self.control_mode = uri, obs_mode, control_mode
+        check_choice("observation format", obs_format, FORMATS)
+        if replan_steps < 1:
+            raise ValueError(f"replan_steps must be at least 1, got {replan_steps}")
+        self.uri, self.format, self.control_mode = uri, FORMATS[obs_format], control_mode
+        self.obs_mode = obs_mode if obs_format == "maniskill" else "rgb"
+        self.replan_steps = replan_steps
         self.timeout, self.retries, self.backoff = timeout, retries, backoff
+        self.interface: PolicyInterface | None = None
+        self.steps, self.fps = 0, 30.0  # the episode's steps so far; bind reads the env's rate
+        self.timing: list[dict] = []
         self.socket: ClientConnection | None = None
         self._stack = ExitStack()
         self.metadata: dict = {}
@@ -133,20 +144,47 @@ class RemotePolicy:
     def get_control_mode(self) -> str:
         return self.control_mode
 
+    def get_sensor_configs(self) -> dict | None:
+        """The camera resolution the format's images come from (None: the robot's)."""
+        if self.format.render is None:
+            return None
+        width, height = self.format.render
+        return {"width": width, "height": height}
+
     def bind(self, env) -> None:
-        self.prompt = env.unwrapped.get_language_instruction()[0]
+        u = env.unwrapped
+        self.prompt = u.get_language_instruction()[0]
+        self.interface = u.agent.policy_interface()
+        self.fps = float(u.control_freq)
 
     def reset(self, obs) -> None:
-        self.chunk = []
+        self.chunk, self.steps = [], 0
 
     def act(self, obs) -> np.ndarray:
         if not self.chunk:
-            reply = self._ask(packb({"observation": _unbatch(obs), "prompt": self.prompt}))
+            time_s = self.steps / self.fps
+            request = self.format.encode(obs, self.prompt, self.interface, time_s)
+            sent = time.perf_counter()
+            reply = self._ask(packb(request))
             if isinstance(reply, str):
                 raise RuntimeError(f"policy server at {self.uri} failed: {reply}")
-            actions = np.asarray(unpackb(reply)["actions"], dtype=np.float32)
-            self.chunk = list(actions.reshape(-1, actions.shape[-1]))
+            answer = unpackb(reply)
+            timing = {"round_trip_ms": 1000.0 * (time.perf_counter() - sent)}
+            timing.update(answer.get("server_timing", {}))
+            self.timing.append(timing)
+            actions = np.asarray(answer["actions"], dtype=np.float32)
+            actions = self.format.decode(actions.reshape(-1, actions.shape[-1]), self.interface)
+            self.chunk = list(actions[: self.replan_steps])
+        self.steps += 1
         return self.chunk.pop(0)[None]
+
+    def stats(self) -> dict:
+        """The requests made and the timing the server reported (ms: mean and median)."""
+        out: dict = {"server": self.uri, "format": self.format.name, "requests": len(self.timing)}
+        for key in sorted({k for t in self.timing for k in t}):
+            values = [float(t[key]) for t in self.timing if key in t]
+            out[key] = {"mean": float(np.mean(values)), "median": float(np.median(values))}
+        return out
 
     def close(self) -> None:
         self._stack.close()

@@ -28,7 +28,9 @@ def episode_result(row: dict) -> EpisodeResult:
 def maniskill_metrics(row: dict) -> dict:
     """A row's metrics as ManiSkill's evaluator reports them: stage flags and scalars, and
     the policy's error where there was one."""
-    metrics = {**row["stages"], **{k: row[k] for k in SCALARS}}
+    metrics = {**row["stages"], **{k: row[k] for k in SCALARS}, "success_once": row["success"]}
+    if row.get("success_at_end") is not None:
+        metrics["success_at_end"] = row["success_at_end"]
     if row.get("error"):
         metrics["error"] = row["error"]
     return metrics
@@ -56,11 +58,14 @@ def write_csv(path: Path, rows: list[dict]) -> None:
     write_text(path, text.getvalue())
 
 
-def write_reports(out: Path, rows: list[dict]) -> dict:
-    """Every report of ``rows``; returns the summary."""
+def write_reports(out: Path, rows: list[dict], policy: dict | None = None) -> dict:
+    """Every report of ``rows``; returns the summary (with ``policy``: what the policy
+    reports of itself, a served one its server's timing)."""
     results = [episode_result(r) for r in rows]
     errors = sum(bool(r.get("error")) for r in rows)
     summary = {"groups": aggregate(results), "episodes": len(results), "errors": errors}
+    if policy:
+        summary["policy"] = policy
     stage_funnel(summary["groups"], out / "stage_funnel.png")
     grounding_attribution(results, out / "grounding_errors.png")
     write_json(out / "summary.json", summary, indent=2)

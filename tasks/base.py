@@ -265,10 +265,9 @@ class InstructMoveEnv(BaseEnv):
         has, t = self._target >= 0, self._target.clamp(min=0)
         within, lifted = dist < th.reach, raised & grasped
         conditions = [has & within[rows, t], has & lifted[rows, t]]
+        conditions += self._goal_conditions(pos, quat, grasped)
         stages = self._stages
-        stages.update(
-            dist, within, lifted, rise, conditions + self._goal_conditions(pos, quat, grasped)
-        )
+        stages.update(dist, within, lifted, rise, conditions)
         f = {k: v.clone() for k, v in stages.flags.items()}
         reach, lift = schema.names[:2]
         info = {
@@ -284,7 +283,10 @@ class InstructMoveEnv(BaseEnv):
         }
         info.update({k: v for k, v in f.items() if k not in info})
         info.update(
-            success=f[schema.success], stage_score=schema.score([v.float() for v in f.values()])
+            success=f[schema.success],
+            # the success stage's own condition at this step, not latched: success at the end
+            success_now=conditions[schema.names.index(schema.success)],
+            stage_score=schema.score([v.float() for v in f.values()]),
         )
         return info
 

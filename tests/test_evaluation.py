@@ -96,7 +96,7 @@ def test_eval_cli_rejects_several_cpu_envs_and_missing_arguments(tmp_path, capsy
     assert main([*args, "--num-envs", "3", "--sim-backend", "physx_cpu"]) == 2
     assert "num_envs=3 needs the GPU sim backend" in capsys.readouterr().err
     assert main(["eval", "--policy", "random", "--out", str(tmp_path)]) == 2
-    assert "--task or --config" in capsys.readouterr().err
+    assert "one of --task, --config or --traj" in capsys.readouterr().err
     assert main(["eval", "--task", TASK]) == 2
     assert "--policy and --out" in capsys.readouterr().err
 
@@ -127,7 +127,8 @@ class FakeVectorEnv:
     def _info(self) -> dict:
         done = torch.tensor([self.t >= self.succeed_at.get(s, 10**9) for s in self.seeds])
         first = torch.where(done, self.targets, -1)
-        flags = {k: done.clone() for k in ("reach", "lift", "success", "any_reach", "any_lift")}
+        names = ("reach", "lift", "success", "success_now", "any_reach", "any_lift")
+        flags = {k: done.clone() for k in names}
         return {**flags, "reached_object": first, "lifted_object": first, "stage_score": 1.0 * done}
 
     def close(self) -> None:
@@ -168,12 +169,14 @@ def test_vector_env_batches_episodes_and_latches_each_sub_scene(tmp_path, monkey
     monkeypatch.setattr(evaluation.gym, "make", lambda *args, **kwargs: env)
     summary = evaluate_config(BatchPolicy(), config, tmp_path / "a", num_envs=2)
     assert env.resets == [seeds[:2], [seeds[2]] * 2], "two sub-scenes a reset, the last padded"
-    assert env.steps == config.max_episode_steps + 1, "the second batch stops when it succeeds"
+    assert env.steps == 2 * config.max_episode_steps, "every batch runs the whole horizon"
     rows = _rows(tmp_path / "a")
     assert [r["success"] for r in rows] == [True, False, True] and summary["errors"] == 0
+    assert [r["success_at_end"] for r in rows] == [True, False, True]
     env.steps = 0
     evaluate_config(BatchPolicy(fail_at=4), config, tmp_path / "b", num_envs=2)
     rows = _rows(tmp_path / "b")
     assert rows[0]["success"] and rows[0]["error"] is None, "latched before the failure"
+    assert rows[0]["success_at_end"] is None, "the run did not reach the end"
     assert rows[1]["error"] == "act() raised RuntimeError: lost the connection"
     assert not rows[1]["success"] and rows[2]["error"] is not None

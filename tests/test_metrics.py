@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import dataclasses
+
 import gymnasium as gym
 import numpy as np
 import pytest
@@ -108,3 +110,32 @@ def test_live_oracle_reach_scores_as_control_errors():
     (row,) = aggregate(results)
     assert row["reach"] >= 2 / 3 and row["lift"] == 0.0
     assert row["control_error"] == row["reach"] and row["grounding_error"] == 0.0
+
+
+def test_success_at_end_and_language_following(attribute_spec):
+    """Under alternative_target the instruction names another candidate than the scene's
+    own target: going for it is following the language, going for the scene's target not."""
+    normal, catalog = attribute_spec
+    original = normal.target
+    named = next(k for k in normal.candidates if k != original)
+    spec = dataclasses.replace(normal, target=named, condition="alternative_target")
+    assert spec.objects[original].role == "target", "the scene's own target keeps its role"
+    lift = {"reach": True, "lift": True, "success": True, "stage_score": 1.0}
+    followed = score_episode(
+        spec,
+        _info(**lift, reached_object=named, lifted_object=named, success_now=False),
+        PICK_STAGES,
+        catalog,
+    )
+    assert followed.choice == "target" and followed.success and followed.success_at_end is False
+    ignored = score_episode(spec, _info(reached_object=original), PICK_STAGES, catalog)
+    assert ignored.choice == "original" and ignored.grounding_error
+    idle = score_episode(spec, _info(success_now=False), PICK_STAGES, catalog)
+    assert idle.choice == "none"
+    (row,) = aggregate([followed, ignored, ignored, idle])
+    assert row["language_following"] == pytest.approx(1 / 3), "idle episodes do not count"
+    assert row["language_following_ci"] == pytest.approx(wilson(1, 3))
+    assert row["success_at_end"] == 0.0 and row["success"] == 0.25
+    (plain,) = aggregate([score_episode(normal, _info(), PICK_STAGES, catalog)])
+    assert "language_following" not in plain and "success_at_end" not in plain
+    assert markdown_table([plain]).endswith("| - | - |")

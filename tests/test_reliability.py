@@ -226,10 +226,12 @@ class HoldStillServer:
 def test_a_lost_policy_server_stops_the_run_and_a_resume_finishes_it(tmp_path):
     config = _config(3)
     whole = HoldStillServer()
-    evaluate_config(RemotePolicy(whole.uri, obs_mode="state_dict"), config, tmp_path / "whole")
+    evaluate_config(
+        RemotePolicy(whole.uri, "maniskill", obs_mode="state_dict"), config, tmp_path / "whole"
+    )
     whole.stop()
     dying = HoldStillServer(die_after=STEPS + 2)  # dies in the second episode
-    policy = RemotePolicy(dying.uri, obs_mode="state_dict", retries=2, backoff=0.05)
+    policy = RemotePolicy(dying.uri, "maniskill", obs_mode="state_dict", retries=2, backoff=0.05)
     start = time.perf_counter()
     with pytest.raises(ServerError, match=dying.uri):
         evaluate_config(policy, config, tmp_path / "resumed")
@@ -237,7 +239,9 @@ def test_a_lost_policy_server_stops_the_run_and_a_resume_finishes_it(tmp_path):
     rows = _lines(tmp_path / "resumed")
     assert [r["episode_id"] for r in rows] == [0] and rows[0]["error"] is None
     back = HoldStillServer()  # the server is back (at its new address)
-    evaluate_config(RemotePolicy(back.uri, obs_mode="state_dict"), config, tmp_path / "resumed")
+    evaluate_config(
+        RemotePolicy(back.uri, "maniskill", obs_mode="state_dict"), config, tmp_path / "resumed"
+    )
     back.stop()
     assert _lines(tmp_path / "resumed") == _lines(tmp_path / "whole")
     assert all(r["error"] is None for r in _lines(tmp_path / "resumed"))
@@ -245,7 +249,7 @@ def test_a_lost_policy_server_stops_the_run_and_a_resume_finishes_it(tmp_path):
 
 def test_a_brief_drop_of_the_connection_is_bridged():
     server = HoldStillServer()
-    policy = RemotePolicy(server.uri, obs_mode="state_dict", retries=3, backoff=0.05)
+    policy = RemotePolicy(server.uri, "maniskill", obs_mode="state_dict", retries=3, backoff=0.05)
     obs = {"agent": {"qpos": np.zeros((1, 9), dtype=np.float32)}}
     policy.act(obs)
     policy.socket.close()  # the connection drops; the server is still there

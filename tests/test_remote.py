@@ -2,12 +2,15 @@
 
 from __future__ import annotations
 
+import dataclasses
 import threading
 
 import numpy as np
+import pytest
 from websockets.sync.server import serve
 
-from instructmove_ms.evaluation import evaluate
+from instructmove_ms import heldout
+from instructmove_ms.evaluation import evaluate, evaluate_config
 from instructmove_ms.remote import RemotePolicy, packb, unpackb
 
 CHUNK = 4
@@ -35,7 +38,8 @@ def test_evaluation_through_a_policy_server(tmp_path):
         port = server.socket.getsockname()[1]
         thread = threading.Thread(target=server.serve_forever, daemon=True)
         thread.start()
-        policy = RemotePolicy(f"ws://127.0.0.1:{port}", obs_mode="state_dict")
+        uri = f"ws://127.0.0.1:{port}"
+        policy = RemotePolicy(uri, obs_format="maniskill", obs_mode="state_dict")
         assert policy.metadata == {"server": "test"}
         summary = evaluate(
             policy, "PickCategory-InstructMove", "seen", tmp_path, robot="franka", episodes=1
@@ -50,3 +54,91 @@ def test_evaluation_through_a_policy_server(tmp_path):
         ("pick", "grab", "lift", "grasp", "take", "raise", "please", "can", "get")
     )
     assert {"agent", "extra"} <= set(keys)
+
+
+def _shapes(request: dict) -> dict:
+    """Each key's (shape, dtype), nested dicts flattened with "/"."""
+    out = {}
+    for key, value in request.items():
+        if isinstance(value, dict):
+            out.update({f"{key}/{k}": v for k, v in _shapes(value).items()})
+        elif isinstance(value, str):
+            out[key] = "str"
+        else:
+            out[key] = (tuple(value.shape), str(value.dtype))
+    return out
+
+
+IMAGE = ((224, 224, 3), "uint8")
+FORMATS = {
+    ("franka", "instructmove"): {
+        "observation.images.ext1_camera": IMAGE,
+        "observation.images.ext2_camera": IMAGE,
+        "observation.images.wrist_camera": IMAGE,
+        "observation.state": ((8,), "float32"),
+        "timestamp": ((1,), "float32"),
+        "prompt": "str",
+    },
+    ("franka", "droid"): {
+        "observation/exterior_image_1_left": IMAGE,
+        "observation/exterior_image_2_left": IMAGE,
+        "observation/wrist_image_left": IMAGE,
+        "observation/joint_position": ((7,), "float32"),
+        "observation/gripper_position": ((1,), "float32"),
+        "prompt": "str",
+    },
+    ("piperx", "aloha"): {
+        "images/cam_high": ((3, 224, 224), "uint8"),
+        "images/cam_left_wrist": ((3, 224, 224), "uint8"),
+        "images/cam_right_wrist": ((3, 224, 224), "uint8"),
+        "state": ((14,), "float32"),
+        "prompt": "str",
+    },
+    ("piperx", "instructmove"): {
+        "observation.images.static_camera": IMAGE,
+        "observation.images.left_hand_camera": IMAGE,
+        "observation.images.right_hand_camera": IMAGE,
+        "observation.state": ((14,), "float32"),
+        "timestamp": ((1,), "float32"),
+        "prompt": "str",
+    },
+}
+#: Where each format keeps the robot's state, and how a held state becomes its action.
+HOLD = {
+    "instructmove": lambda r: r["observation.state"],
+    "droid": lambda r: np.concatenate(
+        [r["observation/joint_position"], r["observation/gripper_position"]]
+    ),
+    "aloha": lambda r: r["state"],
+}
+
+
+@pytest.mark.parametrize(("robot", "name"), sorted(FORMATS))
+def test_formats_send_the_documented_keys_and_their_actions_hold_the_robot(robot, name, tmp_path):
+    """A server that answers every request with the state it was sent, in its format's
+    action layout: the robot holds still only if keys, order and units agree both ways."""
+    requests = []
+
+    def handler(ws):
+        ws.send(packb({}))
+        for message in ws:
+            request = unpackb(message)
+            requests.append(request)
+            held = HOLD[name](request).astype(np.float32)
+            ws.send(packb({"actions": held[None], "server_timing": {"infer_ms": 1.5}}))
+
+    config = heldout.evaluator_config("PickCategory-InstructMove", robot, "seen", episodes=1)
+    config = dataclasses.replace(config, max_episode_steps=12)
+    with serve(handler, "127.0.0.1", 0) as server:
+        threading.Thread(target=server.serve_forever, daemon=True).start()
+        uri = f"ws://127.0.0.1:{server.socket.getsockname()[1]}"
+        policy = RemotePolicy(uri, obs_format=name, replan_steps=1)
+        summary = evaluate_config(policy, config, tmp_path)
+        policy.close()
+        server.shutdown()
+    assert _shapes(requests[0]) == FORMATS[(robot, name)]
+    assert requests[0]["prompt"] == config.episodes[0].spec.instruction
+    first, last = HOLD[name](requests[0]), HOLD[name](requests[-1])
+    assert len(requests) == 12 and np.abs(last - first).max() < 0.02, "the robot held still"
+    assert summary["policy"]["requests"] == 12
+    assert summary["policy"]["infer_ms"]["median"] == 1.5
