@@ -12,7 +12,9 @@ from instructmove_ms.tasks import TASKS
 
 
 def test_quickstart_writes_every_output_and_resumes(tmp_path):
-    settings = QuickstartSettings(demos=1, episodes=1, videos=1, workers=1, export_size=32)
+    settings = QuickstartSettings(
+        demos=1, episodes=1, videos=1, workers=1, export_size=32, lerobot_size=32
+    )
     report = run(tmp_path, settings)
     text = report.read_text()
     for task, spec in TASKS.items():
@@ -21,6 +23,10 @@ def test_quickstart_writes_every_output_and_resumes(tmp_path):
     (mcap,) = sorted((tmp_path / "mcap").glob("*.mcap"))
     episode = read_episode(mcap)
     assert episode.instruction and f"`mcap/{mcap.name}`" in text
+    for robot in {spec.default_robot for spec in TASKS.values()}:
+        info = json.loads((tmp_path / "lerobot" / robot / "meta" / "info.json").read_text())
+        assert info["robot_type"] == robot and info["codebase_version"] == "v3.0"
+        assert f"`lerobot/{robot}`" in text
     header = next(line for line in text.splitlines() if line.startswith("| family"))
     assert all(f" {p} " in header for p in POLICIES)
     runs = json.loads((tmp_path / "summary.json").read_text())
