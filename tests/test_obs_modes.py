@@ -71,3 +71,20 @@ def test_vector_env_and_flatten_wrappers_keep_working():
     assert "reach" in info and info["reach"].shape == (1,)
     assert venv.unwrapped.get_language_instruction()[0]
     venv.close()
+
+
+@pytest.mark.parametrize("robot", ["franka", "piperx"])
+def test_maniskill_recorder_with_info_on_video_works_on_our_envs(robot, tmp_path):
+    """ManiSkill's own RecordEpisode with the step info drawn on the video, which fails under
+    numpy 2 (our install keeps numpy 1)."""
+    import imageio.v2 as imageio
+    from mani_skill.utils.wrappers import RecordEpisode
+
+    env = make_env(robot_uids=robot, render_backend="cpu", render_mode="rgb_array")
+    env = RecordEpisode(env, str(tmp_path), info_on_video=True)
+    env.reset(seed=0)
+    for _ in range(4):
+        env.step(env.action_space.sample() * 0)
+    env.close()
+    (video,) = tmp_path.glob("*.mp4")
+    assert len(imageio.mimread(video)) == 5, "the reset and 4 steps, with the info drawn"
