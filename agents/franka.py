@@ -60,6 +60,11 @@ class FrankaInstructMove(InstructMoveAgent, Panda):
         return [self.tcp]
 
     @property
+    def finger_pairs(self) -> list:
+        """The hand's fingers: finger1 opens along its y axis, finger2 against it."""
+        return [((self.finger1_link, 1.0), (self.finger2_link, -1.0))]
+
+    @property
     def _sensor_configs(self):
         base = self.robot.links_map["panda_link0"]
         hand = self.robot.links_map["panda_hand"]

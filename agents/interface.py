@@ -3,12 +3,14 @@ its number of arms."""
 
 from __future__ import annotations
 
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import ClassVar
 
 import numpy as np
 import torch
 from mani_skill.agents.controllers import PDEEPosController
+from mani_skill.utils import common
 
 from instructmove_ms.layout import Workspace
 
@@ -64,6 +66,47 @@ class InstructMoveAgent:
     @property
     def tcp_links(self) -> list:
         raise NotImplementedError
+
+    @property
+    def finger_pairs(self) -> list[tuple[tuple[object, float], tuple[object, float]]]:
+        """Per arm, its two finger links, each with the sign that turns its y axis into
+        the direction it opens."""
+        raise NotImplementedError
+
+    def grasping(
+        self,
+        actor,
+        forces: Callable,
+        arms: Sequence[int] | None = None,
+        min_force: float = 0.5,
+        max_angle: float = 85.0,
+    ) -> torch.Tensor:
+        """(N,) true where both fingers of one of ``arms`` (default: all) push on ``actor``
+        with at least ``min_force`` N, within ``max_angle`` deg of the direction they open
+        (ManiSkill's Panda test), the contact forces read by ``forces(link, actor)``. A
+        finger that touches nowhere ends its arm's test (no pose is read for it)."""
+        pairs = self.finger_pairs if arms is None else [self.finger_pairs[k] for k in arms]
+        flags = []
+        for pair in pairs:
+            flag = None
+            for link, sign in pair:
+                force = forces(link, actor)
+                pushed = torch.linalg.norm(force, dim=1) >= min_force
+                if not bool(pushed.any()):
+                    flag = torch.zeros_like(pushed)
+                    break
+                opening = sign * link.pose.to_transformation_matrix()[..., :3, 1]
+                angle = torch.rad2deg(common.compute_angle_between(opening, force))
+                finger = pushed & (angle <= max_angle)
+                flag = finger if flag is None else flag & finger
+            flags.append(flag)
+        return torch.stack(flags).any(dim=0)
+
+    def is_grasping(self, actor, min_force: float = 0.5, max_angle: float = 85.0) -> torch.Tensor:
+        """(N,) true where any arm grasps ``actor``."""
+        return self.grasping(
+            actor, self.scene.get_pairwise_contact_forces, None, min_force, max_angle
+        )
 
     def tcp_positions(self) -> torch.Tensor:
         """TCP positions of every arm, (N, arms, 3)."""

@@ -26,8 +26,6 @@ from mani_skill.agents.controllers import (
 )
 from mani_skill.agents.registration import register_agent
 from mani_skill.sensors.camera import CameraConfig
-from mani_skill.utils import common
-from mani_skill.utils.structs.actor import Actor
 from mani_skill.utils.structs.link import Link
 
 from .cameras import DEFAULT_HEIGHT, DEFAULT_WIDTH, REFERENCE_HEIGHT, REFERENCE_WIDTH, Intrinsics
@@ -279,27 +277,10 @@ class PiperX(InstructMoveAgent, BaseAgent):
     def tcp_links(self) -> list[Link]:
         return self._tcps
 
-    def is_grasping_arm(
-        self, actor: Actor, arm: int, min_force: float = 0.5, max_angle: float = 85.0
-    ) -> torch.Tensor:
-        """(N,) true where both fingers of arm ``arm`` (0 left, 1 right) push on ``actor``
-        with at least ``min_force`` N, within ``max_angle`` deg of their opening direction."""
-        flags = []
-        for link, sign in zip(self.finger_links[arm], (1.0, -1.0), strict=True):
-            forces = self.scene.get_pairwise_contact_forces(link, actor)
-            opening = sign * link.pose.to_transformation_matrix()[..., :3, 1]
-            angle = torch.rad2deg(common.compute_angle_between(opening, forces))
-            flags.append((torch.linalg.norm(forces, dim=1) >= min_force) & (angle <= max_angle))
-        return flags[0] & flags[1]
-
-    def is_grasping(
-        self, actor: Actor, min_force: float = 0.5, max_angle: float = 85.0
-    ) -> torch.Tensor:
-        """(N,) true where any arm grasps ``actor``."""
-        flags = [
-            self.is_grasping_arm(actor, k, min_force, max_angle) for k in range(len(self.sides))
-        ]
-        return torch.stack(flags).any(dim=0)
+    @property
+    def finger_pairs(self) -> list[tuple[tuple[Link, float], tuple[Link, float]]]:
+        """Per arm (0 left, 1 right): finger1 opens along its y axis, finger2 against it."""
+        return [((one, 1.0), (two, -1.0)) for one, two in self.finger_links]
 
     def is_static(self, threshold: float = 0.2) -> torch.Tensor:
         """(N,) true where every arm joint moves slower than ``threshold`` rad/s."""

@@ -10,6 +10,7 @@ checked), ``_goal_conditions`` (its stages after lift), ``_goal_reward`` and
 from __future__ import annotations
 
 import dataclasses
+from dataclasses import dataclass, field
 from typing import Any, ClassVar
 
 import numpy as np
@@ -22,6 +23,7 @@ from mani_skill.utils.structs.actor import Actor
 from mani_skill.utils.structs.pose import Pose
 from mani_skill.utils.structs.types import SimConfig
 
+from instructmove_ms.agents.contacts import ContactForces
 from instructmove_ms.assets import DEFAULT_SNAPSHOT, load_snapshot
 from instructmove_ms.assets.sapien_builder import actor_builder
 from instructmove_ms.composer import compose
@@ -32,6 +34,18 @@ from instructmove_ms.validation import check_choice, check_range
 
 from .scene import build_table
 from .stages import StageTracker, box_distance
+
+
+@dataclass
+class Measured:
+    """What one step of the scene shows, read once and shared by ``evaluate``, the reward
+    and the observation: the objects' positions and orientations (N, K, 3 / 4), the
+    step's contact forces and the grasp flags checked so far (object index -> (N,))."""
+
+    pos: torch.Tensor
+    quat: torch.Tensor
+    contacts: ContactForces
+    grasped: dict[int, torch.Tensor] = field(default_factory=dict)
 
 
 class InstructMoveEnv(BaseEnv):
@@ -81,6 +95,7 @@ class InstructMoveEnv(BaseEnv):
         self.episodes: list[EpisodeSpec] = []
         self.objects: list[Actor] = []
         self._requested: list[EpisodeSpec] | None = None
+        self._now: Measured | None = None
         kwargs.setdefault("reconfiguration_freq", 1)
         super().__init__(*args, robot_uids=robot_uids, **kwargs)
 
@@ -215,17 +230,34 @@ class InstructMoveEnv(BaseEnv):
             Pose.create_from_pq(torch.zeros((len(idx), 3), device=self.device))
         )
         self._stages.reset(env_idx)
+        self._now = None
 
     # Scoring --------------------------------------------------------------------------
-    def _object_poses(self) -> tuple[torch.Tensor, torch.Tensor]:
-        poses = torch.stack([obj.pose.raw_pose for obj in self.objects], dim=1)
-        return poses[..., :3], poses[..., 3:]
+    def _after_control_step(self) -> None:
+        self._now = None  # the scene moved: the next reader measures it again
 
-    def _grasped(self, mask: torch.Tensor) -> torch.Tensor:
-        """(N, K) grasp flags, computed only for objects where ``mask`` has any row set."""
+    def _measure(self) -> Measured:
+        """The objects' poses of this step, and its contacts for grasp checks."""
+        poses = torch.stack([obj.pose.raw_pose for obj in self.objects], dim=1)
+        self._now = Measured(poses[..., :3], poses[..., 3:], ContactForces(self.scene))
+        return self._now
+
+    def _measured(self) -> Measured:
+        """This step's measurements (``evaluate`` takes them; the reward and the
+        observation that follow it in a step share them)."""
+        return self._now if self._now is not None else self._measure()
+
+    def _grasp(self, now: Measured, k: int) -> torch.Tensor:
+        """(N,) whether the robot grasps object ``k``, checked once per step."""
+        if k not in now.grasped:
+            now.grasped[k] = self.agent.grasping(self.objects[k], now.contacts)
+        return now.grasped[k]
+
+    def _grasped(self, now: Measured, mask: torch.Tensor) -> torch.Tensor:
+        """(N, K) grasp flags, checked only for objects where ``mask`` has any row set."""
         grasped = torch.zeros_like(mask)
         for k in torch.nonzero(mask.any(dim=0)).flatten().tolist():
-            grasped[:, k] = self.agent.is_grasping(self.objects[k])
+            grasped[:, k] = self._grasp(now, k)
         return grasped
 
     def _watched(self, raised: torch.Tensor) -> torch.Tensor:
@@ -254,13 +286,14 @@ class InstructMoveEnv(BaseEnv):
 
     def evaluate(self) -> dict:
         th, schema = self.task.thresholds, self.task.stages
-        pos, quat = self._object_poses()
+        now = self._measure()
+        pos, quat = now.pos, now.quat
         dist = box_distance(
             self.agent.tcp_positions(), pos, quat, self._box_center, self._box_half
         ).amin(dim=1)
         rise = pos[..., 2] - self._z0
         raised = rise > th.lift
-        grasped = self._grasped(self._watched(raised))
+        grasped = self._grasped(now, self._watched(raised))
         rows = torch.arange(self.num_envs, device=self.device)
         has, t = self._target >= 0, self._target.clamp(min=0)
         within, lifted = dist < th.reach, raised & grasped
@@ -293,8 +326,8 @@ class InstructMoveEnv(BaseEnv):
     def _get_obs_extra(self, info: dict) -> dict:
         obs = dict(tcp_pose=self.agent.tcp_state())
         if "state" in self.obs_mode:
-            pos, quat = self._object_poses()
-            obs["obj_pose"] = torch.cat([pos, quat], dim=-1).flatten(1)
+            now = self._measured()
+            obs["obj_pose"] = torch.cat([now.pos, now.quat], dim=-1).flatten(1)
             obs["obj_half_size"] = self._box_half.flatten(1)
         return obs
 
@@ -305,11 +338,12 @@ class InstructMoveEnv(BaseEnv):
         get 0."""
         rows = torch.arange(self.num_envs, device=self.device)
         t = self._target.clamp(min=0)
-        pos, quat = self._object_poses()
+        now = self._measured()
+        pos, quat = now.pos, now.quat
         rise = pos[rows, t, 2] - self._z0[rows, t]
         grasped = torch.zeros(self.num_envs, dtype=torch.bool, device=self.device)
         for k in torch.unique(t).tolist():
-            grasped |= (t == k) & self.agent.is_grasping(self.objects[k])
+            grasped |= (t == k) & self._grasp(now, k)
         reward = 1.0 - torch.tanh(10.0 * info["target_distance"].clamp(max=10.0))
         lifted = (rise / self.task.thresholds.lift).clamp(0, 1)
         reward = reward + grasped.float() * (1.0 + 2.0 * lifted)

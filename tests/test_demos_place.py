@@ -62,7 +62,12 @@ def _watch_holders(env) -> list[list[bool]]:
 
     def watch(action):
         out = step(action)
-        holders.append([bool(u.agent.is_grasping_arm(target, k)[0]) for k in (0, 1)])
+        holders.append(
+            [
+                bool(u.agent.grasping(target, u.scene.get_pairwise_contact_forces, [k])[0])
+                for k in (0, 1)
+            ]
+        )
         return out
 
     env.step = watch
@@ -162,7 +167,7 @@ def test_piperx_leans_its_hand_into_a_far_receptacle():
     def watch(action):
         _, _, _, _, info = step(action)
         for arm, link in enumerate(u.agent.tcp_links):
-            if bool(u.agent.is_grasping_arm(target, arm)[0]):
+            if bool(u.agent.grasping(target, u.scene.get_pairwise_contact_forces, [arm])[0]):
                 down = link.pose.sp.to_transformation_matrix()[:3, 2]
                 holds.append((arm, float(np.degrees(np.arccos(np.clip(-down[2], -1.0, 1.0))))))
         return None, None, None, None, info
@@ -200,7 +205,8 @@ def test_an_object_resting_upside_down_in_the_receptacle_counts_as_placed():
         for _ in range(60):
             env.step(hold)
         assert target.pose.sp.to_transformation_matrix()[2, 2] < -0.9, "it turned over"
-        pos, quat = u._object_poses()
+        now = u._measure()
+        pos, quat = now.pos, now.quat
         grasped = torch.zeros(pos.shape[:2], dtype=torch.bool)  # nothing holds it
         placed.append(bool(u._goal_conditions(pos, quat, grasped)[1][0]))
     env.close()

@@ -281,8 +281,8 @@ def test_gripper_grasps_and_lifts(env, kin, side, category, grasp_depth):
     rise = float(obj.pose.p[0, 2]) - z0
     assert rise > 0.04, f"{category} rose {rise:.3f} m"
     arm = SIDES.index(side)
-    assert bool(agent.is_grasping_arm(obj, arm)[0])
-    assert not bool(agent.is_grasping_arm(obj, 1 - arm)[0])
+    assert bool(agent.grasping(obj, agent.scene.get_pairwise_contact_forces, [arm])[0])
+    assert not bool(agent.grasping(obj, agent.scene.get_pairwise_contact_forces, [1 - arm])[0])
     assert bool(agent.is_grasping(obj)[0])
     assert bool(info["lift"]) and bool(info["success"])
 
