@@ -7,6 +7,26 @@ import json
 import sys
 
 
+def _add_workers(p: argparse.ArgumentParser, what: str) -> None:
+    """``--workers`` and ``--ray`` of a long job (see ``executor``)."""
+    p.add_argument("--workers", type=int, default=1, help=f"local processes ({what})")
+    p.add_argument(
+        "--ray",
+        nargs="?",
+        const="",
+        default=None,
+        metavar="ADDRESS",
+        help="run the shards on a Ray cluster: 'auto', HOST:PORT, or no value for Ray's "
+        "default (RAY_ADDRESS, a cluster started here, else a new local one)",
+    )
+
+
+def _workers(args: argparse.Namespace, gpus: float = 0.0):
+    from instructmove_ms.executor import Workers
+
+    return Workers(args.workers, args.ray, gpus=gpus)
+
+
 def _cmd_envs(args: argparse.Namespace) -> int:
     from instructmove_ms.tasks import TASKS
 
@@ -217,7 +237,7 @@ def _cmd_demos_generate(args: argparse.Namespace) -> int:
     from instructmove_ms.demos.generate import generate
 
     report = generate(
-        args.task, args.robot, args.n, args.out, args.seed0, args.workers, args.shard_size
+        args.task, args.robot, args.n, args.out, args.seed0, _workers(args), args.shard_size
     )
     print(
         f"{report.kept} demos from {report.tried} seeds ({report.rollouts} rollouts): "
@@ -241,7 +261,7 @@ def _cmd_export_mcap(args: argparse.Namespace) -> int:
     from instructmove_ms.export import ExportSettings, export_trajectory
 
     settings = ExportSettings(args.width, args.height, args.jpeg_quality)
-    report = export_trajectory(args.traj, args.out, args.workers, settings)
+    report = export_trajectory(args.traj, args.out, _workers(args), settings)
     print(
         f"{len(report.written)} episodes written ({report.bytes / 1e6:.1f} MB in "
         f"{report.seconds:.0f} s), {len(report.skipped)} already there -> {args.out}"
@@ -253,7 +273,7 @@ def _cmd_export_lerobot(args: argparse.Namespace) -> int:
     from instructmove_ms.export.lerobot import LeRobotSettings, export_lerobot
 
     settings = LeRobotSettings(args.repo_id, args.width, args.height)
-    report = export_lerobot(args.traj, args.out, settings, args.workers)
+    report = export_lerobot(args.traj, args.out, settings, _workers(args))
     print(
         f"{len(report.written)} episodes written ({report.frames} frames, "
         f"{report.bytes / 1e6:.1f} MB in {report.seconds:.0f} s), {len(report.skipped)} already "
@@ -378,10 +398,13 @@ def _cmd_eval(args: argparse.Namespace) -> int:
     for _, config in configs:
         config.check()
         _check_format(args, config)
+    workers = _workers(args, gpus=1.0 if args.num_envs > 1 else 0.0)  # GPU simulation
     policy = _load_policy(args.policy, args)
     rows = []
     for out, config in configs:
-        summary = evaluate_config(policy, config, out, args.num_envs, args.sim_backend, video)
+        summary = evaluate_config(
+            policy, config, out, args.num_envs, args.sim_backend, video, workers
+        )
         rows += summary["groups"]
     print(markdown_table(rows))
     if "policy" in summary:  # a served policy: its server's own timing
@@ -432,7 +455,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("-n", type=int, default=100, help="demos to keep")
     p.add_argument("--out", default="out/demos", help="output folder")
     p.add_argument("--seed0", type=int, default=0, help="first training seed")
-    p.add_argument("--workers", type=int, default=1, help="parallel processes")
+    _add_workers(p, "one shard of seeds each")
     p.add_argument("--shard-size", type=int, default=5, help="demos per resumable shard")
     p.set_defaults(func=_cmd_demos_generate)
     p = demos.add_parser(
@@ -469,6 +492,7 @@ def build_parser() -> argparse.ArgumentParser:
         help="write the evaluator config of --task/--robot/--split/--condition and stop",
     )
     p.add_argument("--num-envs", type=int, default=1, help="episodes at once (GPU sim only)")
+    _add_workers(p, "one env each, a batch of --num-envs episodes at a time")
     p.add_argument("--sim-backend", default="auto", help="ManiSkill sim backend")
     p.add_argument("--video", action="store_true", help="an MP4 per episode in OUT/videos")
     p.add_argument("--video-first", type=int, default=None, help="videos of the first K only")
@@ -492,7 +516,7 @@ def build_parser() -> argparse.ArgumentParser:
     p = export.add_parser("mcap", help="one MCAP per episode (Foxglove schemas, cameras rendered)")
     p.add_argument("--traj", required=True, help="trajectory .h5 (with .json, .episodes.json)")
     p.add_argument("--out", required=True, help="output folder (resumable)")
-    p.add_argument("--workers", type=int, default=1, help="rendering processes")
+    _add_workers(p, "rendering one episode at a time each")
     p.add_argument("--width", type=int, default=None, help="camera width (default: robot's)")
     p.add_argument("--height", type=int, default=None, help="camera height (default: robot's)")
     p.add_argument("--jpeg-quality", type=int, default=90, help="colour image JPEG quality")
@@ -507,7 +531,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--repo-id", required=True, help="the dataset's name, e.g. me/instructmove")
     p.add_argument("--width", type=int, default=224, help="camera width")
     p.add_argument("--height", type=int, default=224, help="camera height")
-    p.add_argument("--workers", type=int, default=1, help="rendering processes")
+    _add_workers(p, "rendering one episode at a time each")
     p.set_defaults(func=_cmd_export_lerobot)
     p = sub.add_parser(
         "serve-replay", help="serve a LeRobot dataset's recorded actions with openpi's server"

@@ -30,6 +30,7 @@ runs one env per process.
 from __future__ import annotations
 
 import dataclasses
+import functools
 import inspect
 import json
 import re
@@ -44,7 +45,8 @@ import torch
 from tqdm import tqdm
 
 from . import heldout
-from .files import OutputLock, append_text, clean_stale, read_rows
+from .executor import Tick, Workers, job_token, worker_state
+from .files import OutputLock, append_text, clean_stale, read_rows, write_text
 from .guard import PolicyError, check_action, guarded
 from .heldout import ConfigEpisode, EvaluatorConfig
 from .metrics import EpisodeResult, score_episode
@@ -169,6 +171,9 @@ class _Runner:
                 self._write_video(episode, film, result, failed)
         return rows
 
+    def close(self) -> None:
+        self.env.close()
+
     def _log_error(self, batch: list[ConfigEpisode], exc: PolicyError) -> None:
         ids = ", ".join(str(e.episode_id) for e in batch)
         tqdm.write(f"episode {ids}: {exc}")
@@ -216,6 +221,30 @@ def _make_env(
     )
 
 
+@dataclass(frozen=True)
+class _Setup:
+    """What a worker needs to run batches of one evaluation (picklable: the policy is
+    pickled into each worker process, and a served policy connects again there)."""
+
+    policy: Any
+    config: EvaluatorConfig  # without its episodes: the shards carry them
+    out: Path
+    num_envs: int
+    sim_backend: str
+    video: VideoSettings | None
+    filmed: frozenset
+
+    def runner(self) -> _Runner:
+        env = _make_env(self.policy, self.config, self.num_envs, self.sim_backend, self.video)
+        horizon = self.config.max_episode_steps
+        return _Runner(env, self.policy, horizon, self.out, self.video, set(self.filmed))
+
+
+def _run_batch(token: str, setup: _Setup, batch: list[ConfigEpisode], tick: Tick) -> list[dict]:
+    """A shard: the rows of one batch, run by this process's runner of the evaluation."""
+    return worker_state(token, setup.runner).run(batch)
+
+
 def evaluate_config(
     policy: Any,
     config: EvaluatorConfig,
@@ -223,14 +252,18 @@ def evaluate_config(
     num_envs: int = 1,
     sim_backend: str = "auto",
     video: VideoSettings | None = None,
+    workers: Workers | int = 1,
 ) -> dict:
     """Run ``policy`` on exactly the episodes of ``config``; write the config used, the
-    results and the reports to ``out``; return the summary."""
+    results and the reports to ``out``; return the summary. ``workers`` (local processes or
+    a Ray cluster, see ``executor``) run batches of ``num_envs`` episodes each; the policy's
+    own statistics (a served policy's timing) are reported when it runs in this process."""
     check_backend(num_envs, sim_backend)
+    workers = Workers.of(workers)
     config.check()  # before anything is written
     with OutputLock(out, "instructmove eval"):
         clean_stale(out)
-        return _evaluate(policy, config, out, num_envs, sim_backend, video)
+        return _evaluate(policy, config, out, num_envs, sim_backend, video, workers)
 
 
 def _evaluate(
@@ -240,28 +273,33 @@ def _evaluate(
     num_envs: int,
     sim_backend: str,
     video: VideoSettings | None,
+    workers: Workers,
 ) -> dict:
     config.write(out / "config.json")
     log = out / "episodes.jsonl"
     done = {row["episode_id"]: row for row in read_rows(log)}
     todo = [e for e in config.episodes if e.episode_id not in done]
+    here = workers.ray is None and (workers.processes == 1 or len(todo) <= num_envs)
     if todo:
         filmed = {e.episode_id for e in config.episodes[: video.first]} if video else set()
-        env = _make_env(policy, config, num_envs, sim_backend, video)
-        runner = _Runner(env, policy, config.max_episode_steps, out, video, filmed)
+        shell = dataclasses.replace(config, episodes=[])
+        setup = _Setup(policy, shell, out, num_envs, sim_backend, video, frozenset(filmed))
+        batches = [todo[start : start + num_envs] for start in range(0, len(todo), num_envs)]
+        run = functools.partial(_run_batch, job_token(), setup)
         desc = f"{config.env_id} {todo[0].spec.split} {todo[0].spec.condition}"
-        try:
-            with log.open("a") as sink, tqdm(total=len(todo), desc=desc, unit="episode") as bar:
-                for start in range(0, len(todo), num_envs):
-                    for row in runner.run(todo[start : start + num_envs]):
-                        sink.write(json.dumps(row) + "\n")
-                        sink.flush()
-                        done[row["episode_id"]] = row
-                        bar.update()
-        finally:
-            env.close()
+        with log.open("a") as sink, tqdm(total=len(todo), desc=desc, unit="episode") as bar:
+            for _, rows in workers.run(run, batches, folder=out):
+                for row in rows:  # appended as they finish: a killed run loses none
+                    sink.write(json.dumps(row) + "\n")
+                    sink.flush()
+                    done[row["episode_id"]] = row
+                    bar.update()
+        clean_stale(out)  # what a worker killed mid-episode left (the episode ran again)
     rows = [done[e.episode_id] for e in config.episodes if e.episode_id in done]
-    return write_reports(out, rows, getattr(policy, "stats", dict)())
+    if todo:  # in the config's order, however the shards finished
+        write_text(log, "".join(json.dumps(row) + "\n" for row in rows))
+    stats = getattr(policy, "stats", dict)() if here else {}
+    return write_reports(out, rows, stats)
 
 
 def evaluate(
@@ -275,9 +313,10 @@ def evaluate(
     num_envs: int = 1,
     sim_backend: str = "auto",
     video: VideoSettings | None = None,
+    workers: Workers | int = 1,
 ) -> dict:
     """Run ``policy`` on the held-out set of (env, robot, split) under ``condition`` (the
     first ``episodes`` of it, all by default)."""
     check_backend(num_envs, sim_backend)
     config = heldout.evaluator_config(env_id, robot, split, condition, episodes)
-    return evaluate_config(policy, config, out, num_envs, sim_backend, video)
+    return evaluate_config(policy, config, out, num_envs, sim_backend, video, workers)

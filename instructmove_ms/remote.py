@@ -186,6 +186,16 @@ class RemotePolicy:
             out[key] = {"mean": float(np.mean(values)), "median": float(np.median(values))}
         return out
 
+    def __getstate__(self) -> dict:
+        """Pickled without its connection (for evaluation workers): the copy connects
+        again and keeps its own timing."""
+        state = {k: v for k, v in self.__dict__.items() if k not in ("socket", "_stack")}
+        return {**state, "timing": [], "chunk": []}
+
+    def __setstate__(self, state: dict) -> None:
+        self.__dict__.update(state, socket=None, _stack=ExitStack())
+        self._reconnect()
+
     def close(self) -> None:
         self._stack.close()
         self.socket = None

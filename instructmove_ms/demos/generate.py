@@ -19,13 +19,10 @@ staging folders a killed run left.
 from __future__ import annotations
 
 import json
-import multiprocessing as mp
 import os
-import threading
 from collections import Counter
 from collections.abc import Callable
 from dataclasses import dataclass, field
-from functools import partial
 from pathlib import Path
 
 import gymnasium as gym
@@ -33,6 +30,7 @@ from mani_skill.trajectory.merge_trajectory import merge_trajectories
 from mani_skill.utils.wrappers import RecordEpisode
 from tqdm import tqdm
 
+from instructmove_ms.executor import Workers
 from instructmove_ms.files import OutputLock, clean_stale, staging, write_json
 from instructmove_ms.splits import is_training_seed
 from instructmove_ms.tasks import TASKS
@@ -42,7 +40,6 @@ from .synthesis import FAILURES, synthesize, synthesize_scene
 
 SHARD_SIZE = 5  # kept demos per shard
 SEED_BLOCK = 1000  # seeds reserved for each shard
-_DONE = "done"  # ends the progress queue
 
 Progress = Callable[[str | None], None]  # called per seed tried: None (kept) or the failure
 
@@ -150,11 +147,6 @@ def run_job(job: Job, progress: Progress) -> dict:
     }
 
 
-def _worker(job: Job, queue) -> dict:
-    """Pool entry point: ``run_job`` reporting each seed through a manager queue."""
-    return run_job(job, queue.put)
-
-
 def _pending(ledger: dict, task: str, robot: str, out: Path, n: int) -> list[Job]:
     """The shards still to record for ``n`` demos: the lowest free indices, in order."""
     size = ledger["shard_size"]
@@ -180,15 +172,17 @@ def generate(
     n: int,
     out_dir: str | Path,
     seed0: int = 0,
-    workers: int = 1,
+    workers: Workers | int = 1,
     shard_size: int = SHARD_SIZE,
 ) -> Report:
     """Write ``n`` successful demos of ``task`` with ``robot`` into ``out_dir`` (see the module
-    docstring) with ``workers`` processes, ``shard_size`` demos per shard, resuming from its
-    ledger (which fixes ``seed0`` and ``shard_size``)."""
+    docstring) with ``workers`` (local processes or a Ray cluster, see ``executor``),
+    ``shard_size`` demos per shard, resuming from its ledger (which fixes ``seed0`` and
+    ``shard_size``)."""
     check_choice("task", task, TASKS)
     check_choice("robot", robot, TASKS[task].supported_robots)
-    for name, value in (("n", n), ("workers", workers), ("shard_size", shard_size)):
+    workers = Workers.of(workers)
+    for name, value in (("n", n), ("shard_size", shard_size)):
         if value < 1:
             raise ValueError(f"{name} must be at least 1, got {value}")
     out = Path(out_dir)
@@ -196,11 +190,20 @@ def generate(
     with OutputLock(out, f"instructmove demos generate {stem}"):
         clean_stale(out)  # what a killed run left
         (out / "shards").mkdir(parents=True, exist_ok=True)
-        return _generate(task, robot, n, out, stem, seed0, workers, shard_size)
+        report = _generate(task, robot, n, out, stem, seed0, workers, shard_size)
+        clean_stale(out)  # what a worker killed mid-shard left (its shard ran again)
+        return report
 
 
 def _generate(
-    task: str, robot: str, n: int, out: Path, stem: str, seed0: int, workers: int, shard_size: int
+    task: str,
+    robot: str,
+    n: int,
+    out: Path,
+    stem: str,
+    seed0: int,
+    workers: Workers,
+    shard_size: int,
 ) -> Report:
     ledger_path = out / f"{stem}.ledger.json"
     ledger = (
@@ -226,7 +229,8 @@ def _generate(
             ledger["shards"].sort(key=lambda s: s["index"])
             write_json(ledger_path, ledger)
 
-        _run(jobs, workers, tick, finished)
+        for _, entry in workers.run(run_job, jobs, tick, folder=out):
+            finished(entry)  # the ledger is updated as each shard lands
     path = out / f"{stem}.h5"
     if jobs or not (out / f"{stem}.episodes.json").exists():  # the merge's last file
         _merge(out, stem, [s["name"] for s in ledger["shards"]])
@@ -240,31 +244,6 @@ def _generate(
         {k: failures.get(k, 0) for k in FAILURES},
         path,
     )
-
-
-def _run(jobs: list[Job], workers: int, tick: Progress, finished: Callable[[dict], None]):
-    """Run the jobs in this process (one worker) or in a pool of spawned processes, calling
-    ``tick`` per seed tried and ``finished`` per shard recorded, in this process."""
-    if workers == 1 or len(jobs) <= 1:
-        for job in jobs:
-            finished(run_job(job, tick))
-        return
-    ctx = mp.get_context("spawn")  # SAPIEN and torch do not survive fork
-    with ctx.Manager() as manager, ctx.Pool(min(workers, len(jobs))) as pool:
-        queue = manager.Queue()
-        listener = threading.Thread(target=_drain, args=(queue, tick), daemon=True)
-        listener.start()
-        try:
-            for entry in pool.imap_unordered(partial(_worker, queue=queue), jobs):
-                finished(entry)  # ledger updated as each shard lands
-        finally:
-            queue.put(_DONE)
-            listener.join()
-
-
-def _drain(queue, tick: Progress) -> None:
-    while (item := queue.get()) != _DONE:
-        tick(item)
 
 
 def _merge(out: Path, stem: str, names: list[str]) -> None:

@@ -1,12 +1,14 @@
-"""Episodes converted in this process or in spawned worker processes, each holding one
-converter (an env that renders) for all the episodes it gets."""
+"""Episodes converted as shards of :class:`~instructmove_ms.executor.Workers`: each worker
+process makes one converter (an env that renders) for all the episodes it gets."""
 
 from __future__ import annotations
 
-import multiprocessing
+import functools
 from collections.abc import Callable, Iterator
-from concurrent.futures import ProcessPoolExecutor, as_completed
+from pathlib import Path
 from typing import Any, Protocol
+
+from instructmove_ms.executor import Tick, Workers, job_token, worker_state
 
 
 class Converter(Protocol):
@@ -15,41 +17,14 @@ class Converter(Protocol):
     def close(self) -> None: ...
 
 
-_WORKER: Converter | None = None
+def _convert(token: str, make: Callable[[], Converter], job: tuple, tick: Tick) -> Any:
+    return worker_state(token, make).convert(*job)
 
 
-def _init_worker(make: Callable[[], Converter]) -> None:
-    global _WORKER
-    _WORKER = make()
-
-
-def _convert_in_worker(job: tuple) -> Any:
-    assert _WORKER is not None, "worker not initialised"
-    return _WORKER.convert(*job)
-
-
-def run_jobs(make: Callable[[], Converter], jobs: list[tuple], workers: int) -> Iterator[tuple]:
+def run_jobs(
+    make: Callable[[], Converter], jobs: list[tuple], workers: Workers, out: Path
+) -> Iterator[tuple]:
     """Yields (job, result) of ``converter.convert(*job)`` for every job, in completion order,
-    with ``workers`` spawned processes (SAPIEN and torch do not survive a fork), each making
-    its converter once with ``make`` (a picklable callable); in this process for one."""
-    if not jobs:
-        return
-    if workers == 1 or len(jobs) == 1:
-        converter = make()
-        try:
-            for job in jobs:
-                yield job, converter.convert(*job)
-        finally:
-            converter.close()
-        return
-    context = multiprocessing.get_context("spawn")
-    with ProcessPoolExecutor(
-        min(workers, len(jobs)), context, initializer=_init_worker, initargs=(make,)
-    ) as pool:
-        futures = {pool.submit(_convert_in_worker, job): job for job in jobs}
-        try:
-            for future in as_completed(futures):
-                yield futures[future], future.result()
-        finally:
-            for future in futures:
-                future.cancel()
+    each worker making its converter once with ``make`` (a picklable callable); the
+    converters write into ``out``."""
+    return workers.run(functools.partial(_convert, job_token(), make), jobs, folder=out)

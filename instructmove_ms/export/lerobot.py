@@ -43,6 +43,7 @@ import pyarrow as pa
 import pyarrow.parquet as pq
 from tqdm import tqdm
 
+from instructmove_ms.executor import Workers
 from instructmove_ms.files import OutputLock, atomic_path, clean_stale, write_json
 
 from .jobs import run_jobs
@@ -263,12 +264,11 @@ def export_lerobot(
     traj_paths: list[str | Path],
     out_dir: str | Path,
     settings: LeRobotSettings,
-    workers: int = 1,
+    workers: Workers | int = 1,
 ) -> LeRobotReport:
     """Write the episodes of ``traj_paths`` into the LeRobot dataset ``out_dir`` (see the
-    module docstring); ``workers`` > 1 renders in that many spawned processes."""
-    if workers < 1:
-        raise ValueError(f"workers must be >= 1, got {workers}")
+    module docstring); ``workers``: local processes or a Ray cluster (``executor``)."""
+    workers = Workers.of(workers)
     if not traj_paths:
         raise ValueError("give at least one trajectory (--traj)")
     trajs = [load_trajectory(p) for p in traj_paths]  # every input checked before writing
@@ -276,11 +276,13 @@ def export_lerobot(
     out = Path(out_dir)
     with OutputLock(out, "instructmove export lerobot"):
         clean_stale(out)
-        return _export(trajs, out, settings, workers)
+        report = _export(trajs, out, settings, workers)
+        clean_stale(out)  # what a worker killed mid-episode left (the episode ran again)
+        return report
 
 
 def _export(
-    trajs: list[Trajectory], out: Path, settings: LeRobotSettings, workers: int
+    trajs: list[Trajectory], out: Path, settings: LeRobotSettings, workers: Workers
 ) -> LeRobotReport:
     entries, tasks = _entries(trajs)
     params = {
@@ -308,7 +310,7 @@ def _export(
     make = functools.partial(EpisodeWriter, shells, settings, out)
     done = len(report.skipped)
     with tqdm(total=len(entries), initial=done, desc=out.name, unit="episode") as bar:
-        for (entry,), (frames, size) in run_jobs(make, todo, workers):
+        for (entry,), (frames, size) in run_jobs(make, todo, workers, out):
             report.written.append(entry.index)
             report.frames += frames
             report.bytes += size

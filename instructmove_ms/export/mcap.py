@@ -1,4 +1,4 @@
-"""Trajectory -> one MCAP per episode, rendered in parallel spawned workers, resumable.
+"""Trajectory -> one MCAP per episode, rendered by parallel workers (local or Ray), resumable.
 
 The input is read and checked first (nothing is written for a bad input); episodes whose
 MCAP already exists are skipped; each file is written atomically.
@@ -14,6 +14,7 @@ from pathlib import Path
 
 from tqdm import tqdm
 
+from instructmove_ms.executor import Workers
 from instructmove_ms.files import OutputLock, clean_stale
 
 from .jobs import run_jobs
@@ -74,22 +75,25 @@ class EpisodeConverter:
 def export_trajectory(
     traj_path: str | Path,
     out_dir: str | Path,
-    workers: int = 1,
+    workers: Workers | int = 1,
     settings: ExportSettings | None = None,
 ) -> ExportReport:
     """Convert every episode of the trajectory ``traj_path`` into ``out_dir`` (see the module
-    docstring); ``workers`` > 1 renders in that many spawned processes."""
-    if workers < 1:
-        raise ValueError(f"workers must be >= 1, got {workers}")
+    docstring); ``workers``: local processes or a Ray cluster (``executor``)."""
+    workers = Workers.of(workers)
     settings = settings or ExportSettings()
     traj = load_trajectory(traj_path)
     out = Path(out_dir)
     with OutputLock(out, "instructmove export mcap"):
         clean_stale(out)  # the files a killed run was writing
-        return _export(traj, out, workers, settings)
+        report = _export(traj, out, workers, settings)
+        clean_stale(out)  # what a worker killed mid-episode left (the episode ran again)
+        return report
 
 
-def _export(traj: Trajectory, out: Path, workers: int, settings: ExportSettings) -> ExportReport:
+def _export(
+    traj: Trajectory, out: Path, workers: Workers, settings: ExportSettings
+) -> ExportReport:
     report = ExportReport()
     todo = []
     for ep in traj.episodes:
@@ -104,7 +108,7 @@ def _export(traj: Trajectory, out: Path, workers: int, settings: ExportSettings)
     ) as bar:
         shell = dataclasses.replace(traj, episodes=())  # what each worker needs to pickle
         make = functools.partial(EpisodeConverter, shell, settings)
-        for (_, path), size in run_jobs(make, todo, workers):
+        for (_, path), size in run_jobs(make, todo, workers, out):
             report.written.append(path)
             report.bytes += size
             bar.update(1)
