@@ -1,13 +1,15 @@
-"""Scale-out: demos/min and evaluation episodes/h with 1 and 2 local worker processes and
-with Ray on 2 CPUs, as ratios to 1 worker measured in the same run (the speed-up; divided
-by the CPUs used, the scaling efficiency), the driver's overhead per shard, and the wall time
-those figures project for 10,000 demos and for a full evaluation sweep (4 families x 3
+"""Scale-out: demos and evaluation episodes with 1 and 2 local worker processes and with Ray
+on 2 CPUs, as ratios to 1 worker measured in the same run (the speed-up; divided by the
+CPUs used, the scaling efficiency), the driver's overhead per shard, and the wall time the
+measured costs project for 10,000 demos and for a full evaluation sweep (4 families x 3
 splits x 100 episodes x 5 conditions) on N machines of this size.
 
-Demos: PickCategory with the Franka, shards of 2 demos. Evaluation: the random policy with
-rgb observations from the default cameras (the simulation and rendering a served VLA gets,
-without its inference), one episode per shard. Overhead: empty shards through each executor.
-"""
+One worker runs a short and a twice as long job: their difference gives the cost per demo
+(episode) once a worker has started, the rest its start-up; the projection is start-up plus
+that cost spread over N machines' CPUs at the Ray efficiency measured here. Demos:
+PickCategory with the Franka, shards of 4. Evaluation: the random policy with rgb
+observations from the default cameras (the simulation and rendering a served VLA gets,
+without its inference), one episode per shard. Overhead: empty shards."""
 
 from __future__ import annotations
 
@@ -30,19 +32,19 @@ DEMOS_WANTED, SWEEP_EPISODES = 10_000, 4 * 3 * 100 * 5
 MACHINES = (1, 4, 16)
 
 
-def _demos_per_min(workers: Workers, n: int) -> float:
+def _demos_seconds(workers: Workers, n: int) -> float:
     with tempfile.TemporaryDirectory() as tmp:
         start = time.perf_counter()
-        generate(TASK, ROBOT, n, Path(tmp), workers=workers, shard_size=2)
-        return n * 60 / (time.perf_counter() - start)
+        generate(TASK, ROBOT, n, Path(tmp), workers=workers, shard_size=4)
+        return time.perf_counter() - start
 
 
-def _episodes_per_hour(workers: Workers, n: int) -> float:
+def _eval_seconds(workers: Workers, n: int) -> float:
     policy = RandomPolicy(obs_mode="rgb")
     with tempfile.TemporaryDirectory() as tmp:
         start = time.perf_counter()
         evaluate(policy, TASK, "seen", Path(tmp), ROBOT, episodes=n, workers=workers)
-        return n * 3600 / (time.perf_counter() - start)
+        return time.perf_counter() - start
 
 
 def _empty(shard: int, tick) -> int:
@@ -50,53 +52,52 @@ def _empty(shard: int, tick) -> int:
 
 
 def _overhead_ms(workers: Workers, shards: int) -> float:
-    """Milliseconds per empty shard, the executor's start-up excluded (a first round)."""
-    list(workers.run(_empty, list(range(4))))
-    start = time.perf_counter()
-    list(workers.run(_empty, list(range(shards))))
-    return (time.perf_counter() - start) * 1000 / shards
+    """The driver's milliseconds per empty shard: the marginal cost of ``shards`` more."""
 
+    def seconds(count: int) -> float:
+        start = time.perf_counter()
+        list(workers.run(_empty, list(range(count))))
+        return time.perf_counter() - start
 
-def _hours(units: float, per_hour_one: float, efficiency: float, cpus: int) -> float:
-    return units / (per_hour_one * efficiency * cpus)
+    return (seconds(2 * shards) - seconds(shards)) * 1000 / shards
 
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__)
-    parser.add_argument("--demos", type=int, default=8)
-    parser.add_argument("--episodes", type=int, default=6)
+    parser.add_argument("--demos", type=int, default=12, help="demos of the short job")
+    parser.add_argument("--episodes", type=int, default=3, help="episodes of the short job")
     args = parser.parse_args()
     cpus = os.cpu_count() or 1
     ray.init(num_cpus=2, include_dashboard=False, log_to_driver=False, logging_level="ERROR")
-    setups = (("1 worker", Workers(1), 1), ("2 workers", Workers(2), 2))
-    setups += (("Ray, 2 CPUs", Workers(ray=""), 2),)  # the cluster started above
-    speedups, one = {}, {}
-    for job, measure, n, unit in (
-        ("demos", _demos_per_min, args.demos, "demos/min"),
-        ("eval", _episodes_per_hour, args.episodes, "episodes/h"),
+    setups = (("2 workers", Workers(2), 2), ("Ray, 2 CPUs", Workers(ray=""), 2))
+    for job, measure, n, unit, units in (
+        ("demos", _demos_seconds, args.demos, "demo", DEMOS_WANTED),
+        ("eval", _eval_seconds, args.episodes, "episode", SWEEP_EPISODES),
     ):
+        short, long = measure(Workers(1), n), measure(Workers(1), 2 * n)
+        marginal = (long - short) / n  # seconds per unit once started
+        fixed = max(0.0, short - n * marginal)  # start-up: imports, env, renderer
+        print(
+            f"{job:5s} 1 worker   : {2 * n} {unit}s in {long:.0f} s ({2 * n * 3600 / long:.0f}"
+            f"/h); {marginal:.1f} s per {unit} once started, {fixed:.0f} s start-up"
+        )
+        efficiency = {}
         for name, workers, used in setups:
-            rate = measure(workers, n)
-            one.setdefault(job, rate)
-            speedups[job, name] = rate / one[job]
+            seconds = measure(workers, 2 * n)
+            efficiency[name] = long / seconds / used
             print(
-                f"{job:5s} {name:12s}: {rate:8.1f} {unit}; speed-up {rate / one[job]:.2f}x, "
-                f"efficiency {rate / one[job] / used:.2f}"
+                f"{job:5s} {name:11s}: {2 * n} {unit}s in {seconds:.0f} s; speed-up "
+                f"{long / seconds:.2f}x, efficiency {efficiency[name]:.2f}"
             )
-    for name, workers, _ in setups:
-        print(f"driver overhead per shard, {name:12s}: {_overhead_ms(workers, 200):.1f} ms")
-    ray.shutdown()
-    for job, units, per_hour in (
-        ("demos", DEMOS_WANTED, one["demos"] * 60),
-        ("eval", SWEEP_EPISODES, one["eval"]),
-    ):
-        efficiency = speedups[job, "Ray, 2 CPUs"] / 2
         projected = ", ".join(
-            f"{m} x {cpus} CPUs {_hours(units, per_hour, efficiency, m * cpus):.1f} h"
+            f"{m} x {cpus} CPUs "
+            f"{(fixed + units * marginal / (m * cpus * efficiency['Ray, 2 CPUs'])) / 3600:.1f} h"
             for m in MACHINES
         )
-        what = f"{units} demos" if job == "demos" else f"an eval sweep of {units} episodes"
-        print(f"projected for {what} (Ray efficiency {efficiency:.2f}): {projected}")
+        print(f"projected for {units} {unit}s with Ray: {projected}")
+    for name, workers in (("2 workers", Workers(2)), ("Ray", Workers(ray=""))):
+        print(f"driver overhead per shard, {name}: {_overhead_ms(workers, 200):.2f} ms")
+    ray.shutdown()
 
 
 if __name__ == "__main__":

@@ -392,7 +392,7 @@ def _cmd_eval(args: argparse.Namespace) -> int:
         return 0
     if not (args.policy and args.out):
         raise ValueError("eval needs --policy and --out (or --write-config FILE)")
-    check_backend(args.num_envs, args.sim_backend)
+    check_backend(args.num_envs, args.sim_backend, args.ray is not None)
     video = VideoSettings(first=args.video_first) if args.video else None
     configs = list(_eval_configs(args))  # every input checked before the policy starts
     for _, config in configs:

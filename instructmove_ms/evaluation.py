@@ -24,7 +24,11 @@ unscored, so that a resume runs them.
 ``num_envs > 1`` runs that many episodes at once, one per sub-scene of ManiSkill's GPU
 simulation: the policy gets batched observations and returns (num_envs, dim) actions; a
 policy failure fails the batch's episodes that had not succeeded yet. The CPU simulation
-runs one env per process.
+runs one env per process; ``workers`` (local processes or a Ray cluster, see ``executor``)
+run batches in parallel, each worker with its own env and its own copy of the policy
+(pickled into it: a served policy connects again from there). Rows are appended as batches
+finish and ``episodes.jsonl`` is rewritten in the config's order at the end, so the output
+equals a one-process run's.
 """
 
 from __future__ import annotations
@@ -57,9 +61,10 @@ STATE_MODES = ("state", "state_dict")  # observation modes that need no renderer
 GPU_SIM_BACKENDS = ("auto", "gpu", "cuda", "physx_cuda")  # "auto" is the GPU for num_envs > 1
 
 
-def check_backend(num_envs: int, sim_backend: str) -> None:
+def check_backend(num_envs: int, sim_backend: str, on_cluster: bool = False) -> None:
     """Fail early where ``num_envs`` sub-scenes cannot run: more than one needs the GPU
-    simulation backend and a CUDA device."""
+    simulation backend and a CUDA device (here, unless the episodes run ``on_cluster``,
+    whose GPU workers Ray schedules)."""
     if num_envs < 1:
         raise ValueError(f"num_envs must be at least 1, got {num_envs}")
     if num_envs == 1:
@@ -67,7 +72,7 @@ def check_backend(num_envs: int, sim_backend: str) -> None:
     needs = f"num_envs={num_envs} needs the GPU sim backend (sim_backend='physx_cuda')"
     if sim_backend.split(":")[0] not in GPU_SIM_BACKENDS:
         raise ValueError(f"{needs}; {sim_backend!r} simulates one env per process")
-    if not torch.cuda.is_available():
+    if not on_cluster and not torch.cuda.is_available():
         raise ValueError(f"{needs}, which needs a CUDA device; none is available")
 
 
@@ -258,8 +263,8 @@ def evaluate_config(
     results and the reports to ``out``; return the summary. ``workers`` (local processes or
     a Ray cluster, see ``executor``) run batches of ``num_envs`` episodes each; the policy's
     own statistics (a served policy's timing) are reported when it runs in this process."""
-    check_backend(num_envs, sim_backend)
     workers = Workers.of(workers)
+    check_backend(num_envs, sim_backend, workers.ray is not None)
     config.check()  # before anything is written
     with OutputLock(out, "instructmove eval"):
         clean_stale(out)
@@ -317,6 +322,6 @@ def evaluate(
 ) -> dict:
     """Run ``policy`` on the held-out set of (env, robot, split) under ``condition`` (the
     first ``episodes`` of it, all by default)."""
-    check_backend(num_envs, sim_backend)
+    check_backend(num_envs, sim_backend, Workers.of(workers).ray is not None)
     config = heldout.evaluator_config(env_id, robot, split, condition, episodes)
     return evaluate_config(policy, config, out, num_envs, sim_backend, video, workers)

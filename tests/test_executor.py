@@ -130,15 +130,21 @@ def _ray_shard_worker() -> int | None:
     return None
 
 
-def test_ray_demos_equal_one_process(ray_cluster, tmp_path):
-    """demos generate --ray: the shards run as Ray tasks on the cluster and the merged
-    trajectory, sidecar and ledger equal a one-process run's, byte for byte."""
+def test_ray_demos_equal_one_process_with_a_worker_killed(ray_cluster, tmp_path):
+    """demos generate --ray: the shards run as Ray tasks on the cluster, one of them is
+    killed mid-shard and retried, and the merged trajectory, sidecar and ledger equal a
+    one-process run's, byte for byte."""
     generate(TASK, ROBOT, 2, tmp_path / "one", workers=1, shard_size=1)
+    killed, stop, thread = _killing(_ray_shard_worker, after=0.5)
     run = _cli(
         "demos", "generate", "--task", TASK, "--robot", ROBOT, "-n", "2", "--shard-size", "1",
         "--out", str(tmp_path / "ray"), "--ray", ray_cluster,
     )  # fmt: skip
+    stop.set()
+    thread.join()
     assert run.returncode == 0, run.stderr[-2000:]
+    assert len(killed) == 1, "no Ray worker was killed: the test proved nothing"
+    assert not list((tmp_path / "ray").rglob(".staging*")), "the killed shard's files remain"
     one, ray = _files(tmp_path / "one"), _files(tmp_path / "ray")
     assert sorted(ray) == sorted(one) and f"{TASK}_{ROBOT}.h5" in one
     assert ray == one
@@ -179,9 +185,3 @@ def test_without_ray_local_workers_run_and_ray_says_how_to_install(tmp_path):
         assert "pip install 'instructmove-ms[ray]'" in run.stderr
     assert not (tmp_path / "d").exists() and not (tmp_path / "e").exists()
 
-
-def test_workers_and_ray_together_are_refused(tmp_path):
-    run = _cli("eval", "--task", TASK, "--policy", "random", "--out", str(tmp_path / "e"),
-               "--workers", "2", "--ray", "auto")  # fmt: skip
-    assert run.returncode == 2 and "--workers 2 with --ray" in run.stderr
-    assert not (tmp_path / "e").exists()

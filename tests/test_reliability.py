@@ -148,6 +148,14 @@ def _bad_inputs(tmp_path: Path, demo: Path) -> dict[str, tuple[list[str], str]]:
             str(truncated),
         ),
         "malformed json": ([*convert, str(malformed), *out], str(malformed.parent)),
+        "zero workers": (
+            ["demos", "generate", "--task", TASK, "-n", "1", "--workers", "0", *out],
+            "workers must be at least 1, got 0",
+        ),
+        "workers and ray": (
+            [*evaluate, "--policy", "random", "--workers", "2", "--ray", "auto", *out],
+            "--workers 2 with --ray",
+        ),
     }
 
 

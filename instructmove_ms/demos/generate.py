@@ -18,6 +18,7 @@ staging folders a killed run left.
 
 from __future__ import annotations
 
+import functools
 import json
 import os
 from collections import Counter
@@ -30,7 +31,7 @@ from mani_skill.trajectory.merge_trajectory import merge_trajectories
 from mani_skill.utils.wrappers import RecordEpisode
 from tqdm import tqdm
 
-from instructmove_ms.executor import Workers
+from instructmove_ms.executor import Workers, worker_state
 from instructmove_ms.files import OutputLock, clean_stale, staging, write_json
 from instructmove_ms.splits import is_training_seed
 from instructmove_ms.tasks import TASKS
@@ -74,19 +75,32 @@ class Job:
     want: int
 
 
-def _record(job: Job, folder: Path, progress: Progress) -> tuple[list[dict], Counter[str], int]:
-    """Try the job's seeds until it has kept ``job.want`` demos, recording them into
-    ``folder/<job.name>.h5``; returns the sidecar entries, the failure counts and the number
-    of rollouts run (``synthesize_scene``: only a scene's successful rollout is kept)."""
-    env = gym.make(
-        job.task,
-        robot_uids=job.robot,
+class _Shared(gym.Wrapper):
+    """A worker's env under one shard's recorder: closing the recorder leaves it open for
+    the worker's next shard."""
+
+    def close(self) -> None:
+        pass
+
+
+def _make_env(task: str, robot: str) -> gym.Env:
+    return gym.make(
+        task,
+        robot_uids=robot,
         obs_mode="state",
         control_mode="pd_joint_pos",
         render_backend="cpu",  # recorded into env_kwargs: replay to visual modes needs it
     )
+
+
+def _record(job: Job, folder: Path, progress: Progress) -> tuple[list[dict], Counter[str], int]:
+    """Try the job's seeds until it has kept ``job.want`` demos, recording them into
+    ``folder/<job.name>.h5`` with this worker's env of the task; returns the sidecar
+    entries, the failure counts and the number of rollouts run (``synthesize_scene``: only
+    a scene's successful rollout is kept)."""
+    make = functools.partial(_make_env, job.task, job.robot)
     env = RecordEpisode(
-        env,
+        _Shared(worker_state(f"demos {job.task} {job.robot}", make)),
         str(folder),
         trajectory_name=job.name,
         save_video=False,
