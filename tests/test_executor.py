@@ -184,4 +184,3 @@ def test_without_ray_local_workers_run_and_ray_says_how_to_install(tmp_path):
         assert run.returncode == 2
         assert "pip install 'instructmove-ms[ray]'" in run.stderr
     assert not (tmp_path / "d").exists() and not (tmp_path / "e").exists()
-
