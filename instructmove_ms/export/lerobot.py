@@ -315,6 +315,7 @@ def _export(
             report.frames += frames
             report.bytes += size
             bar.update(1)
+    report.written.sort()  # in episode order, however the workers finished
     report.seconds = time.perf_counter() - start
     _finalize(out, trajs, entries, tasks, settings)
     return report

@@ -112,5 +112,6 @@ def _export(
             report.written.append(path)
             report.bytes += size
             bar.update(1)
+    report.written.sort()  # in episode order, however the workers finished
     report.seconds = time.perf_counter() - start
     return report
