@@ -10,10 +10,10 @@ shards ran.
 
 A shard whose worker process dies (killed, out of memory) is run again, up to ``retries``
 times: local pools are rebuilt with the unfinished shards, Ray retries its tasks. An
-exception raised by ``fn`` itself is the job's and stops it (the shards in flight finish
-first). Shards write into the job's output folder (atomically, see ``files``), so on a
-cluster that folder must be on a file system every node sees at the same path:
-:meth:`Workers.run` checks it with a probe task and says so when it is not.
+exception raised by ``fn`` itself is the job's and stops it (local shards in flight finish
+first, Ray's are cancelled). Shards write into the job's output folder (atomically, see
+``files``), so on a cluster that folder must be on a file system every node sees at the
+same path: :meth:`Workers.run` checks it with a probe task and says so when it is not.
 
 Ray is optional (``pip install 'instructmove-ms[ray]'``) and imported only for ``ray=``.
 Ray's worker processes are reused across tasks, so state a shard builds once per process
