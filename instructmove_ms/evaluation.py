@@ -284,12 +284,11 @@ def _evaluate(
     log = out / "episodes.jsonl"
     done = {row["episode_id"]: row for row in read_rows(log)}
     todo = [e for e in config.episodes if e.episode_id not in done]
-    here = workers.ray is None and (workers.processes == 1 or len(todo) <= num_envs)
+    batches = [todo[start : start + num_envs] for start in range(0, len(todo), num_envs)]
     if todo:
         filmed = {e.episode_id for e in config.episodes[: video.first]} if video else set()
         shell = dataclasses.replace(config, episodes=[])
         setup = _Setup(policy, shell, out, num_envs, sim_backend, video, frozenset(filmed))
-        batches = [todo[start : start + num_envs] for start in range(0, len(todo), num_envs)]
         run = functools.partial(_run_batch, job_token(), setup)
         desc = f"{config.env_id} {todo[0].spec.split} {todo[0].spec.condition}"
         with log.open("a") as sink, tqdm(total=len(todo), desc=desc, unit="episode") as bar:
@@ -303,7 +302,7 @@ def _evaluate(
     rows = [done[e.episode_id] for e in config.episodes if e.episode_id in done]
     if todo:  # in the config's order, however the shards finished
         write_text(log, "".join(json.dumps(row) + "\n" for row in rows))
-    stats = getattr(policy, "stats", dict)() if here else {}
+    stats = getattr(policy, "stats", dict)() if workers.in_process(len(batches)) else {}
     return write_reports(out, rows, stats)
 
 

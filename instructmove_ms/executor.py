@@ -91,9 +91,13 @@ class Workers:
             return iter(())
         if self.ray is not None:
             return _run_ray(self, fn, shards, tick, folder)
-        if self.processes == 1 or len(shards) == 1:
+        if self.in_process(len(shards)):
             return _run_here(fn, shards, tick)
         return _run_local(self, fn, shards, tick)
+
+    def in_process(self, shards: int) -> bool:
+        """Whether :meth:`run` runs that many shards in this process."""
+        return self.ray is None and (self.processes == 1 or shards <= 1)
 
 
 # -- state kept by a worker process for the shards of one job ---------------------------
