@@ -1,6 +1,8 @@
 """The per-step info and dense rewards of planned demos, replayed, equal those recorded
 before the step was made cheaper (tests/data/step_reference.json): one pass of measurements
-per step, contacts read once, grasp checks that stop at an untouched finger."""
+per step, contacts read once, grasp checks that stop at an untouched finger. The PiperX
+cases were recorded again when its SRDF removed the self-contacts of its own links (a
+change of the physics, not of the scoring)."""
 
 from __future__ import annotations
 
