@@ -19,9 +19,17 @@ import numpy as np
 from .assets.catalog import Catalog, Instance
 from .episode import CONDITIONS, EpisodeSpec, ObjectSpec
 from .family import Members, TaskSpec
-from .language import noun, preposition, pronoun, referring_expression, render
+from .language import (
+    noun,
+    preposition,
+    pronoun,
+    referring_expression,
+    render,
+    with_synonyms,
+)
 from .layout import Workspace, sample_layout
 from .sampler import RoleError, RoleSpec, names_clash, resolve_roles
+from .splits import UNSEEN_SPLITS
 from .validation import check_choice
 
 SPAWN_LIFT = 0.002  # objects spawn this far above the table and settle
@@ -58,9 +66,17 @@ def _cast(
 
 
 def _instruction(
-    task: TaskSpec, rng, cue: dict, members: Members, goal: int, dest: int, split: str
+    task: TaskSpec,
+    rng,
+    cue: dict,
+    members: Members,
+    goal: int,
+    dest: int,
+    split: str,
+    templates: tuple[str, ...] | None = None,
 ) -> str:
-    """Render the instruction that singles out ``goal`` (and ``dest``) under ``cue``."""
+    """Render the instruction that singles out ``goal`` (and ``dest``) under ``cue``, from
+    ``templates`` (default: the task's)."""
     phrase = task.cue.phrase(rng, cue, members, goal, split)
     slots = {"target": phrase, "it": pronoun(members[goal][0], phrase)}
     if dest >= 0:
@@ -68,7 +84,7 @@ def _instruction(
         slots.update(
             destination=referring_expression(rng, receptacle, split), prep=preposition(receptacle)
         )
-    return render(rng, task.templates, **slots)
+    return render(rng, templates or task.templates, **slots)
 
 
 def _absent_instance(rng, catalog: Catalog, members) -> Instance:
@@ -125,6 +141,24 @@ def _condition(
         text = render(rng, task.templates, **slots)
     return dataclasses.replace(
         spec, instruction=text, target=-1, goal_destination=-1, cue=cue, condition=condition
+    )
+
+
+def rephrase(
+    task: TaskSpec,
+    catalog: Catalog,
+    spec: EpisodeSpec,
+    rng: np.random.Generator,
+    unseen: bool,
+    synonyms: bool,
+) -> str:
+    """``spec``'s goal said again: another template and expression, from the unseen
+    expression pool if ``unseen``, with the grammar's verb synonyms if ``synonyms``."""
+    members = [(catalog[o.uuid], o.role) for o in spec.objects]
+    split = UNSEEN_SPLITS[0] if unseen else spec.split
+    templates = with_synonyms(task.templates) if synonyms else task.templates
+    return _instruction(
+        task, rng, spec.cue, members, spec.target, spec.goal_destination, split, templates
     )
 
 

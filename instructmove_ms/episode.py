@@ -46,6 +46,8 @@ class EpisodeSpec:
     goal_destination: int = -1  # index of the instruction-consistent receptacle, -1 if none
     cue: dict = field(default_factory=dict)  # how the instruction singles out the goal
     condition: str = "normal"
+    #: the perturbation axes' levels and drawn values (see ``perturbation``); {} for none
+    perturbation: dict = field(default_factory=dict)
     version: int = field(default=SPEC_VERSION)
 
     def __post_init__(self) -> None:
@@ -55,7 +57,12 @@ class EpisodeSpec:
             raise ValueError("the target must be one of the candidate goals")
 
     def to_dict(self) -> dict:
-        return asdict(self)
+        """The spec as plain data; an unperturbed spec has no ``perturbation`` key, so it
+        reads as it did before perturbations existed."""
+        data = asdict(self)
+        if not data["perturbation"]:
+            del data["perturbation"]
+        return data
 
     def to_json(self) -> str:
         return json.dumps(self.to_dict(), sort_keys=True)

@@ -70,3 +70,44 @@ def names(instance: Instance, text: str) -> bool:
 def preposition(receptacle: Instance) -> str:
     """'on' for flat destinations (plates, boards, mats), 'in' for the others."""
     return "on" if receptacle.interior is not None and receptacle.interior.height < 0.03 else "in"
+
+
+#: The grammar's synonyms of the templates' verbs (a template's first word, or the verb
+#: after "and"), for paraphrases beyond the stored templates.
+VERB_SYNONYMS = {
+    "pick up": "fetch",
+    "pick": "lift",
+    "grab": "seize",
+    "lift": "hoist",
+    "grasp": "clutch",
+    "take": "get",
+    "raise": "hold up",
+    "put": "drop",
+    "place": "position",
+    "move": "transfer",
+    "set": "rest",
+}
+
+
+def with_synonyms(templates: tuple[str, ...]) -> tuple[str, ...]:
+    """``templates`` with each verb replaced by its synonym (object slots untouched)."""
+
+    def swap(template: str) -> str:
+        words = template.split(" ")
+        out = []
+        k = 0
+        while k < len(words):
+            pair = " ".join(words[k : k + 2])
+            starts = k == 0 or words[k - 1] in ("and", "you", "please")
+            if starts and pair in VERB_SYNONYMS:
+                out.append(VERB_SYNONYMS[pair])
+                k += 2
+            elif starts and words[k] in VERB_SYNONYMS:
+                out.append(VERB_SYNONYMS[words[k]])
+                k += 1
+            else:
+                out.append(words[k])
+                k += 1
+        return " ".join(out)
+
+    return tuple(swap(t) for t in templates)

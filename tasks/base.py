@@ -26,13 +26,16 @@ from mani_skill.utils.structs.types import SimConfig
 from instructmove_ms.agents.contacts import ContactForces
 from instructmove_ms.assets import DEFAULT_SNAPSHOT, load_snapshot
 from instructmove_ms.assets.sapien_builder import actor_builder
-from instructmove_ms.composer import compose
+from instructmove_ms.composer import compose, rephrase
 from instructmove_ms.episode import CONDITIONS, EpisodeSpec, actor_name
 from instructmove_ms.family import TaskSpec
+from instructmove_ms.perturbation import Context, parse_levels, perturb
 from instructmove_ms.splits import SPLITS
 from instructmove_ms.validation import check_choice, check_range
+from instructmove_ms.verify import verify
 
-from .scene import build_table
+from .scene import build_room
+from .scenery import backdrop, light, move_cameras
 from .stages import StageTracker, box_distance
 
 
@@ -72,6 +75,7 @@ class InstructMoveEnv(BaseEnv):
         robot_init_qpos_noise: float = 0.02,
         snapshot: str = DEFAULT_SNAPSHOT,
         condition: str = "normal",
+        perturbation: dict | str | None = None,
         **kwargs,
     ):
         robot_uids = robot_uids or self.task.default_robot
@@ -85,6 +89,7 @@ class InstructMoveEnv(BaseEnv):
             raise ValueError(f"robot_init_qpos_noise must be >= 0, got {robot_init_qpos_noise!r}")
         self.split = split
         self.condition = condition
+        self.perturbation = parse_levels(perturbation)
         self.num_distractors = num_distractors
         self._roles = tuple(
             dataclasses.replace(r, count=num_distractors) if r.name == "distractor" else r
@@ -128,6 +133,9 @@ class InstructMoveEnv(BaseEnv):
             check_choice("condition", options["condition"], CONDITIONS)
             self.condition = options.pop("condition")
             options["reconfigure"] = True
+        if "perturbation" in options:
+            self.perturbation = parse_levels(options.pop("perturbation"))
+            options["reconfigure"] = True
         if "episode" in options:
             self._requested = self._coerce_episodes(options.pop("episode"))
             options["reconfigure"] = True
@@ -153,10 +161,12 @@ class InstructMoveEnv(BaseEnv):
             raise ValueError("all sub-scenes must hold the same number of objects")
         return specs
 
-    def sample_episode(self, seed: int, condition: str | None = None) -> EpisodeSpec:
-        """The episode of ``seed`` under ``condition`` (default: the env's); see
-        ``composer.compose``."""
-        return compose(
+    def sample_episode(
+        self, seed: int, condition: str | None = None, perturbation=None
+    ) -> EpisodeSpec:
+        """The episode of ``seed`` under ``condition`` and ``perturbation`` (default: the
+        env's); see ``composer.compose`` and ``perturbation.perturb``."""
+        spec = compose(
             self.task,
             self._roles,
             self.catalog,
@@ -166,6 +176,31 @@ class InstructMoveEnv(BaseEnv):
             lambda rng: self.agent.sample_init_qpos(rng, self.robot_init_qpos_noise),
             condition or self.condition,
             self.agent.workspace,
+        )
+        return self.perturbed(spec, self.perturbation if perturbation is None else perturbation)
+
+    def perturbed(self, spec: EpisodeSpec, levels) -> EpisodeSpec:
+        """``spec`` at the perturbation ``levels`` (``{axis: level}`` or ``"axis:level,..."``);
+        a spec that carries a perturbation already is returned as it is stored."""
+        levels = parse_levels(levels)
+        if not levels or spec.perturbation:
+            return spec
+        return perturb(spec, levels, self._perturbation_context())
+
+    def _perturbation_context(self) -> Context:
+        names = [j.name for j in self.agent.robot.get_active_joints()]
+        opening = self.agent.gripper.max_width
+        return Context(
+            task=self.task,
+            catalog=self.catalog,
+            arm=tuple(names.index(n) for n in self.agent.arm_joint_names),
+            limits=self.agent.robot.get_qlimits()[0].cpu().numpy(),
+            cameras=tuple(c.uid for c in self.agent._sensor_configs),
+            workspace=self.agent.workspace,
+            problems=lambda s: verify(s, self.catalog, self.task, opening),
+            rephrase=lambda s, rng, unseen, synonyms: rephrase(
+                self.task, self.catalog, s, rng, unseen, synonyms
+            ),
         )
 
     @property
@@ -182,10 +217,12 @@ class InstructMoveEnv(BaseEnv):
     # Scene ----------------------------------------------------------------------------
     def _load_scene(self, options: dict) -> None:
         if self._requested is not None:
-            self.episodes, self._requested = self._requested, None
+            requested, self._requested = self._requested, None
+            self.episodes = [self.perturbed(ep, self.perturbation) for ep in requested]
         else:
             self.episodes = [self.sample_episode(int(s)) for s in self._episode_seed]
-        build_table(self.scene)
+        floor = build_room(self.scene, self._perturbed_values("table"))
+        backdrop(self.scene, self._perturbed_values("background"), floor)
         self.objects = []
         boxes = []
         for k in range(len(self.episodes[0].objects)):
@@ -209,6 +246,18 @@ class InstructMoveEnv(BaseEnv):
         self._target = torch.tensor([ep.target for ep in self.episodes], device=self.device)
         self._z0 = torch.zeros((self.num_envs, len(self.objects)), device=self.device)
         self._stages = StageTracker(self.task.stages.names, self.num_envs, self.device)
+
+    def _perturbed_values(self, axis: str) -> list[dict | None]:
+        """Each sub-scene's drawn values of a perturbation axis (None where not perturbed)."""
+        return [ep.perturbation.get(axis) for ep in self.episodes]
+
+    def _load_lighting(self, options: dict) -> None:
+        if not light(self.scene, self._perturbed_values("lighting"), self.enable_shadow):
+            super()._load_lighting(options)
+
+    def _setup_sensors(self, options: dict) -> None:
+        super()._setup_sensors(options)
+        move_cameras(self._sensors, self._perturbed_values("camera"))
 
     def _initialize_episode(self, env_idx: torch.Tensor, options: dict) -> None:
         idx = [int(i) for i in env_idx]

@@ -1,0 +1,186 @@
+"""Perturbation axes: each changes what it declares by the declared amount, leaves the
+objects and what the instruction relies on as the spec says, rebuilds bit for bit from a
+stored spec, and level 0 is today's episode."""
+
+from __future__ import annotations
+
+import json
+import math
+
+import gymnasium as gym
+import numpy as np
+import pytest
+import sapien
+import torch
+
+from instructmove_ms.episode import EpisodeSpec
+from instructmove_ms.perturbation import (
+    AXES,
+    LEVELS,
+    PerturbationError,
+    kelvin_rgb,
+    parse_levels,
+    perturb,
+)
+from instructmove_ms.tasks import TASKS
+from instructmove_ms.verify import verify
+
+SEED = 3
+
+
+@pytest.fixture(scope="module")
+def rgb_env():
+    env = gym.make("PickSpatial-InstructMove", robot_uids="franka", obs_mode="rgb")
+    yield env
+    env.close()
+
+
+def _images(obs) -> dict[str, np.ndarray]:
+    return {uid: d["rgb"][0].cpu().numpy() for uid, d in obs["sensor_data"].items()}
+
+
+def _reset(env, levels) -> tuple[EpisodeSpec, dict[str, np.ndarray]]:
+    obs, _ = env.reset(seed=SEED, options={"perturbation": levels})
+    return env.unwrapped.episode, _images(obs)
+
+
+@pytest.mark.parametrize(
+    "value, message",
+    [
+        ("lights:2", "unknown perturbation axis 'lights'"),
+        ("lighting:4", "level 4 of 'lighting' outside 0..3"),
+        ("lighting=2", "'lighting=2' is not AXIS:LEVEL"),
+        ({"camera": 1.5}, "level 1.5 of 'camera'"),
+    ],
+)
+def test_bad_levels_are_named(value, message):
+    with pytest.raises(ValueError, match=message):
+        parse_levels(value)
+
+
+def test_level_zero_is_todays_episode(rgb_env):
+    plain, images = _reset(rgb_env, {})
+    zero, zero_images = _reset(rgb_env, dict.fromkeys(AXES, 0))
+    assert zero == plain and zero.perturbation == {}
+    assert "perturbation" not in json.loads(plain.to_json())  # stored sets read as before
+    for uid in images:
+        np.testing.assert_array_equal(zero_images[uid], images[uid])
+
+
+def test_a_stored_perturbed_episode_rebuilds_bit_for_bit(rgb_env):
+    levels = {"lighting": 2, "table": 3, "camera": 1, "layout": 2, "language": 3}
+    spec, images = _reset(rgb_env, levels)
+    again, _ = _reset(rgb_env, levels)
+    assert again.to_json() == spec.to_json(), "same seed and levels, same episode"
+    stored = EpisodeSpec.from_json(spec.to_json())
+    obs, _ = rgb_env.reset(seed=0, options={"episode": stored.to_dict(), "perturbation": {}})
+    assert rgb_env.unwrapped.episode == spec
+    for uid, image in _images(obs).items():
+        np.testing.assert_array_equal(image, images[uid])
+
+
+@pytest.mark.parametrize("axis", AXES)
+def test_each_axis_keeps_the_objects_and_the_goal(rgb_env, axis):
+    plain, images = _reset(rgb_env, {})
+    spec, perturbed = _reset(rgb_env, {axis: 3})
+    assert [(o.uuid, o.role) for o in spec.objects] == [(o.uuid, o.role) for o in plain.objects]
+    assert (spec.target, spec.candidates, spec.cue) == (plain.target, plain.candidates, plain.cue)
+    assert spec.perturbation["levels"] == {axis: 3}
+    opening = rgb_env.unwrapped.agent.gripper.max_width
+    assert verify(spec, rgb_env.unwrapped.catalog, TASKS[rgb_env.spec.id], opening) == []
+    if axis != "language":  # a paraphrase changes the words, not the picture
+        changed = max(np.abs(perturbed[u].astype(int) - images[u]).mean() for u in images)
+        assert changed > 0.5, f"{axis} 3 leaves every camera's image as it was"
+
+
+def _world_pose(sensor) -> np.ndarray:
+    return sensor.camera.get_global_pose().raw_pose[0].cpu().numpy()
+
+
+@pytest.mark.parametrize("level", [1, 2, 3])
+def test_cameras_move_and_turn_by_the_declared_amount(rgb_env, level):
+    _reset(rgb_env, {})
+    before = {uid: _world_pose(s) for uid, s in rgb_env.unwrapped._sensors.items()}
+    _reset(rgb_env, {"camera": level})
+    declared = LEVELS["camera"][level]
+    for uid, sensor in rgb_env.unwrapped._sensors.items():
+        after = _world_pose(sensor)
+        moved = np.linalg.norm(after[:3] - before[uid][:3]) * 100
+        turned = math.degrees(
+            2 * math.acos(min(1.0, abs(float(np.dot(after[3:], before[uid][3:])))))
+        )
+        assert moved == pytest.approx(declared["cm"], abs=1e-3), uid
+        assert turned == pytest.approx(declared["deg"], abs=1e-2), uid
+
+
+def test_lights_are_the_drawn_ones(rgb_env):
+    spec, _ = _reset(rgb_env, {"lighting": 3})
+    drawn = spec.perturbation["lighting"]
+    scene = rgb_env.unwrapped.scene
+    np.testing.assert_allclose(scene.ambient_light, drawn["ambient"])
+    render = scene.sub_scenes[0].render_system
+    colors = sorted(tuple(float(c) for c in light.color) for light in render.lights)
+    expected = [*(s["color"] for s in drawn["lights"]), *(lamp["color"] for lamp in drawn["lamps"])]
+    np.testing.assert_allclose(colors, sorted(tuple(c) for c in expected), atol=1e-6)
+    assert len(drawn["lamps"]) == LEVELS["lighting"][3]["extra"]
+    low, high = LEVELS["lighting"][3]["intensity"]
+    assert low * 0.3 <= max(drawn["ambient"]) <= high * 0.3
+
+
+def test_warm_light_is_redder_than_cold_light():
+    warm, cold = kelvin_rgb(3000), kelvin_rgb(11000)
+    assert warm[0] > warm[2] and cold[2] > cold[0]
+
+
+def test_the_table_takes_the_drawn_height(rgb_env):
+    spec, _ = _reset(rgb_env, {"table": 2})
+    height = spec.perturbation["table"]["height"]
+    assert abs(height) <= LEVELS["table"][2]["height"]
+    ground = next(a for a in rgb_env.unwrapped.scene.actors.values() if a.name == "ground")
+    static = ground._objs[0].find_component_by_type(sapien.physx.PhysxRigidStaticComponent)
+    plane = static.collision_shapes[0]
+    assert plane.local_pose.p[2] == pytest.approx(-(0.75 + height), abs=1e-6)
+
+
+def test_the_robot_starts_from_the_noisy_joints(rgb_env):
+    plain, _ = _reset(rgb_env, {})
+    spec, _ = _reset(rgb_env, {"robot_init": 3})
+    qpos = rgb_env.unwrapped.agent.robot.get_qpos()[0].cpu().numpy()
+    np.testing.assert_allclose(qpos, spec.robot_qpos, atol=1e-5)
+    moved = np.abs(np.subtract(spec.robot_qpos, plain.robot_qpos))
+    assert moved.max() > 0.05 and moved[-2:].max() == 0.0  # arm joints, not the fingers
+
+
+def test_layout_jitter_stays_within_the_declared_radius(rgb_env):
+    plain, _ = _reset(rgb_env, {})
+    spec, _ = _reset(rgb_env, {"layout": 3})
+    declared = LEVELS["layout"][3]
+    for a, b in zip(plain.objects, spec.objects, strict=True):
+        assert 0 < np.linalg.norm(np.subtract(a.pose[:2], b.pose[:2])) <= declared["cm"] / 100
+    pos = torch.stack([o.pose.p[0] for o in rgb_env.unwrapped.objects]).cpu().numpy()
+    np.testing.assert_allclose(pos[:, :2], [o.pose[:2] for o in spec.objects], atol=1e-5)
+
+
+def test_a_spec_perturbed_already_is_not_perturbed_again(rgb_env):
+    spec, _ = _reset(rgb_env, {"layout": 1})
+    with pytest.raises(ValueError, match="perturbed already"):
+        perturb(spec, {"layout": 2}, rgb_env.unwrapped._perturbation_context())
+
+
+@pytest.mark.parametrize("env_id", sorted(TASKS))
+def test_every_perturbed_episode_of_200_passes_the_verifier(env_id):
+    env = gym.make(env_id, obs_mode="state", render_backend="none")
+    unwrapped = env.unwrapped
+    env.reset(seed=0)
+    opening = unwrapped.agent.gripper.max_width
+    refused = 0
+    for seed in range(200):
+        for axis in ("layout", "language", "robot_init"):
+            try:
+                spec = unwrapped.sample_episode(seed, perturbation={axis: 3})
+            except PerturbationError:
+                refused += 1
+                continue
+            assert verify(spec, unwrapped.catalog, unwrapped.task, opening) == [], (seed, axis)
+    env.close()
+    assert refused == 0
