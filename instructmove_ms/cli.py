@@ -52,6 +52,7 @@ def _cmd_episode(args: argparse.Namespace) -> int:
         robot_uids=args.robot,
         split=args.split,
         condition=args.condition,
+        perturbation=args.perturb,
         obs_mode="state",
         render_backend="none" if args.no_render else "cpu",
     )
@@ -237,7 +238,14 @@ def _cmd_demos_generate(args: argparse.Namespace) -> int:
     from instructmove_ms.demos.generate import generate
 
     report = generate(
-        args.task, args.robot, args.n, args.out, args.seed0, _workers(args), args.shard_size
+        args.task,
+        args.robot,
+        args.n,
+        args.out,
+        args.seed0,
+        _workers(args),
+        args.shard_size,
+        args.perturb,
     )
     print(
         f"{report.kept} demos from {report.tried} seeds ({report.rollouts} rollouts): "
@@ -332,10 +340,16 @@ def _eval_configs(args: argparse.Namespace):
     import dataclasses
     from pathlib import Path
 
-    from instructmove_ms import heldout
+    from instructmove_ms import heldout, robustness
     from instructmove_ms.episode import CONDITIONS
 
+    perturbations = robustness.settings(args.perturb)
     if args.config or args.traj:
+        if perturbations:
+            raise ValueError(
+                "--perturb applies to the stored sets (--task); write a perturbed config with "
+                "--task ... --perturb AXIS:LEVEL --write-config FILE"
+            )
         config = (
             heldout.EvaluatorConfig.load(Path(args.config))
             if args.config
@@ -344,12 +358,21 @@ def _eval_configs(args: argparse.Namespace):
         yield Path(args.out), dataclasses.replace(config, episodes=config.episodes[: args.episodes])
         return
     conditions = CONDITIONS if args.condition == "all" else (args.condition,)
+    sweep = perturbations is not None and args.perturb.startswith("sweep")
     for condition in conditions:
         out = Path(args.out) / condition if len(conditions) > 1 else Path(args.out)
-        yield (
-            out,
-            heldout.evaluator_config(args.task, args.robot, args.split, condition, args.episodes),
-        )
+        for levels in perturbations or [{}]:
+            yield (
+                out / robustness.folder_name(levels) if sweep else out,
+                heldout.evaluator_config(
+                    args.task,
+                    args.robot,
+                    args.split,
+                    condition,
+                    args.episodes,
+                    perturbation=levels,
+                ),
+            )
 
 
 def _check_format(args: argparse.Namespace, config) -> None:
@@ -385,8 +408,10 @@ def _cmd_eval(args: argparse.Namespace) -> int:
     if args.write_config:
         if args.condition == "all":
             raise ValueError("--write-config writes one condition's episodes, not 'all'")
+        if (args.perturb or "").startswith("sweep"):
+            raise ValueError("--write-config writes one perturbation setting, not a sweep")
         config = heldout.evaluator_config(
-            args.task, args.robot, args.split, args.condition, args.episodes
+            args.task, args.robot, args.split, args.condition, args.episodes, None, args.perturb
         )
         print(f"{len(config.episodes)} episodes -> {config.write(Path(args.write_config))}")
         return 0
@@ -400,15 +425,37 @@ def _cmd_eval(args: argparse.Namespace) -> int:
         _check_format(args, config)
     workers = _workers(args, gpus=1.0 if args.num_envs > 1 else 0.0)  # GPU simulation
     policy = _load_policy(args.policy, args)
-    rows = []
+    rows, runs = [], []
     for out, config in configs:
         summary = evaluate_config(
             policy, config, out, args.num_envs, args.sim_backend, video, workers
         )
         rows += summary["groups"]
+        runs.append((config.perturbation, summary["groups"]))
+    if (args.perturb or "").startswith("sweep"):
+        from instructmove_ms.robustness import GROUP, write_robustness
+
+        print(markdown_table(write_robustness(Path(args.out), runs), (*GROUP, "axis", "level")))
+        return 0
     print(markdown_table(rows))
     if "policy" in summary:  # a served policy: its server's own timing
         print(f"policy: {json.dumps(summary['policy'])}")
+    return 0
+
+
+def _cmd_perturb_sheet(args: argparse.Namespace) -> int:
+    from pathlib import Path
+
+    import instructmove_ms  # noqa: F401  (registration)
+    from instructmove_ms.perturb_sheet import sheets
+    from instructmove_ms.perturbation import AXES
+    from instructmove_ms.tasks import TASKS
+    from instructmove_ms.validation import check_choice
+
+    check_choice("task", args.task, TASKS)
+    axes = args.axes.split(",") if args.axes else AXES
+    for path in sheets(args.task, args.robot, args.seed, Path(args.out), axes):
+        print(path)
     return 0
 
 
@@ -431,6 +478,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--seed", type=int, default=0)
     p.add_argument("--condition", default="normal", help="instruction condition")
     p.add_argument("--no-render", action="store_true", help="build the scene without a renderer")
+    p.add_argument("--perturb", default=None, help="perturbation levels, e.g. lighting:2,camera:1")
     p.set_defaults(func=_cmd_episode)
     episodes = sub.add_parser("episodes", help="held-out evaluation episode sets")
     episodes_sub = episodes.add_subparsers(dest="episodes_command", required=True)
@@ -457,6 +505,9 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--seed0", type=int, default=0, help="first training seed")
     _add_workers(p, "one shard of seeds each")
     p.add_argument("--shard-size", type=int, default=5, help="demos per resumable shard")
+    p.add_argument(
+        "--perturb", default=None, help="perturbation levels of the demos, e.g. lighting:1,table:2"
+    )
     p.set_defaults(func=_cmd_demos_generate)
     p = demos.add_parser(
         "convert", help="pd_joint_pos demos to end-effector control (every arm of the robot)"
@@ -480,6 +531,13 @@ def build_parser() -> argparse.ArgumentParser:
         "--condition",
         default="normal",
         help="instruction condition, or 'all' for the five counterfactual ones",
+    )
+    p.add_argument(
+        "--perturb",
+        default=None,
+        metavar="AXIS:LEVEL,...|sweep[=AXES]",
+        help="perturb the stored scenes (levels 0-3), or sweep every axis (or AXES) at every "
+        "level into OUT/<axis>-<level> with a robustness report in OUT",
     )
     p.add_argument("--episodes", type=int, default=None, help="first N episodes of the set")
     p.add_argument(
@@ -541,6 +599,16 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--port", type=int, default=8000)
     p.add_argument("--chunk", type=int, default=50, help="actions per answer")
     p.set_defaults(func=_cmd_serve_replay)
+    perturb = sub.add_parser("perturb", help="perturbation axes").add_subparsers(
+        dest="perturb_command", required=True
+    )
+    p = perturb.add_parser("sheet", help="one PNG per axis: a scene at levels 0-3")
+    p.add_argument("--task", default="PickCategory-InstructMove")
+    p.add_argument("--robot", default=None, help="robot uid (default: the task's)")
+    p.add_argument("--seed", type=int, default=0)
+    p.add_argument("--axes", default=None, help="comma-separated axes (default: every one)")
+    p.add_argument("--out", required=True, help="folder for <axis>.png")
+    p.set_defaults(func=_cmd_perturb_sheet)
     assets = sub.add_parser("assets", help="the object library").add_subparsers(
         dest="assets_command", required=True
     )

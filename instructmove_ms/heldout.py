@@ -21,6 +21,7 @@ from pathlib import Path
 from .assets import DEFAULT_SNAPSHOT, load_snapshot
 from .episode import CONDITIONS, EpisodeSpec
 from .files import write_json, write_text
+from .perturbation import parse_levels
 from .splits import EVAL_SPLITS, eval_seed
 from .tasks import TASKS
 from .validation import check_choice
@@ -76,6 +77,11 @@ class EvaluatorConfig:
     max_episode_steps: int
     env_kwargs: dict
     episodes: tuple[ConfigEpisode, ...]
+
+    @property
+    def perturbation(self) -> dict[str, int]:
+        """The perturbation levels of the config's episodes ({} for none)."""
+        return dict(self.episodes[0].spec.perturbation.get("levels", {})) if self.episodes else {}
 
     def to_dict(self) -> dict:
         return {
@@ -194,9 +200,11 @@ def evaluator_config(
     condition: str = "normal",
     episodes: int | None = None,
     folder: Path | None = None,
+    perturbation: dict[str, int] | str | None = None,
 ) -> EvaluatorConfig:
     """The evaluator config of the first ``episodes`` of the stored set (all by default),
-    each re-rendered for ``condition``: the same scene with that condition's instruction."""
+    each re-rendered for ``condition`` (the same scene with that condition's instruction)
+    and perturbed at ``perturbation``'s levels (see ``perturbation``)."""
     check_choice("task", env_id, TASKS)
     check_choice("condition", condition, CONDITIONS)
     if episodes is not None and episodes < 1:
@@ -204,8 +212,9 @@ def evaluator_config(
     robot = robot or TASKS[env_id].default_robot
     check_choice("robot", robot, TASKS[env_id].supported_robots)
     specs = load_set(env_id, robot, split, folder)[:episodes]
-    if condition != "normal":
-        specs = _rerender(env_id, robot, split, condition, specs)
+    levels = parse_levels(perturbation)
+    if condition != "normal" or levels:
+        specs = _respec(env_id, robot, split, condition, levels, specs)
     return EvaluatorConfig(
         env_id=env_id,
         max_episode_steps=TASKS[env_id].max_episode_steps,
@@ -214,13 +223,26 @@ def evaluator_config(
     )
 
 
-def _rerender(
-    env_id: str, robot: str, split: str, condition: str, specs: list[EpisodeSpec]
+def _respec(
+    env_id: str,
+    robot: str,
+    split: str,
+    condition: str,
+    levels: dict[str, int],
+    specs: list[EpisodeSpec],
 ) -> list[EpisodeSpec]:
+    """``specs`` under ``condition`` at the perturbation ``levels``."""
     import gymnasium as gym
 
     env = gym.make(env_id, robot_uids=robot, split=split, obs_mode="state", render_backend="none")
+    unwrapped = env.unwrapped
     try:
-        return [env.unwrapped.sample_episode(s.seed, condition) for s in specs]
+        return [
+            unwrapped.perturbed(
+                s if condition == "normal" else unwrapped.sample_episode(s.seed, condition, {}),
+                levels,
+            )
+            for s in specs
+        ]
     finally:
         env.close()

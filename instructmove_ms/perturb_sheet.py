@@ -50,5 +50,3 @@ def sheets(task: str, robot: str | None, seed: int, out: Path, axes=AXES) -> lis
         return [axis_sheet(env, seed, axis, Path(out) / f"{axis}.png") for axis in axes]
     finally:
         env.close()
-
-

@@ -184,3 +184,39 @@ def test_every_perturbed_episode_of_200_passes_the_verifier(env_id):
             assert verify(spec, unwrapped.catalog, unwrapped.task, opening) == [], (seed, axis)
     env.close()
     assert refused == 0
+
+
+def test_eval_sweep_reports_every_level_against_the_same_episodes(tmp_path, capsys):
+    from instructmove_ms.cli import main
+
+    argv = ["eval", "--task", "PickCategory-InstructMove", "--robot", "franka"]
+    argv += ["--policy", "oracle", "--episodes", "1", "--perturb", "sweep=camera"]
+    assert main([*argv, "--out", str(tmp_path)]) == 0
+    rows = json.loads((tmp_path / "summary.json").read_text())["robustness"]
+    assert [(r["axis"], r["level"]) for r in rows] == [("camera", k) for k in range(4)]
+    assert all(r["baseline_success"] == rows[0]["success"] for r in rows)
+    assert (tmp_path / "robustness.png").stat().st_size > 0
+    assert "| camera | 3 |" in (tmp_path / "report.md").read_text()
+    for k in range(1, 4):  # each level's episodes are the stored ones, perturbed
+        (row,) = [json.loads(line) for line in (tmp_path / f"camera-{k}/episodes.jsonl").open()]
+        assert row["episode_id"] == 0
+    assert main([*argv[:-1], "sweep=cameras", "--out", str(tmp_path / "bad")]) == 2
+    assert not (tmp_path / "bad").exists()
+    assert "unknown perturbation axis 'cameras'" in capsys.readouterr().err
+
+
+def test_perturbed_demos_record_their_levels_and_replay_to_the_same_scene(tmp_path):
+    from instructmove_ms.demos.generate import generate
+
+    task = "PickCategory-InstructMove"
+    path = generate(task, "franka", 1, tmp_path, shard_size=1, perturbation="layout:1").path
+    meta = json.loads(path.with_suffix(".json").read_text())
+    assert meta["env_info"]["env_kwargs"]["perturbation"] == {"layout": 1}
+    (episode,) = json.loads(path.with_suffix(".episodes.json").read_text())
+    assert episode["spec"]["perturbation"]["levels"] == {"layout": 1}
+    env = gym.make(task, **{**meta["env_info"]["env_kwargs"], "render_backend": "none"})
+    env.reset(**meta["episodes"][0]["reset_kwargs"])
+    assert env.unwrapped.episode == EpisodeSpec.from_dict(episode["spec"])
+    env.close()
+    with pytest.raises(ValueError, match="perturbation"):
+        generate(task, "franka", 2, tmp_path, shard_size=1, perturbation="layout:2")

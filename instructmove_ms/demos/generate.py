@@ -33,6 +33,7 @@ from tqdm import tqdm
 
 from instructmove_ms.executor import Workers, worker_state
 from instructmove_ms.files import OutputLock, clean_stale, staging, write_json
+from instructmove_ms.perturbation import levels_text, parse_levels
 from instructmove_ms.splits import is_training_seed
 from instructmove_ms.tasks import TASKS
 from instructmove_ms.validation import check_choice
@@ -73,6 +74,7 @@ class Job:
     name: str
     seed: int
     want: int
+    perturbation: tuple[tuple[str, int], ...] = ()  # (axis, level) pairs
 
 
 class _Shared(gym.Wrapper):
@@ -83,13 +85,15 @@ class _Shared(gym.Wrapper):
         pass
 
 
-def _make_env(task: str, robot: str) -> gym.Env:
+def _make_env(task: str, robot: str, perturbation: tuple[tuple[str, int], ...]) -> gym.Env:
+    extra = {"perturbation": dict(perturbation)} if perturbation else {}
     return gym.make(
         task,
         robot_uids=robot,
         obs_mode="state",
         control_mode="pd_joint_pos",
         render_backend="cpu",  # recorded into env_kwargs: replay to visual modes needs it
+        **extra,
     )
 
 
@@ -98,9 +102,10 @@ def _record(job: Job, folder: Path, progress: Progress) -> tuple[list[dict], Cou
     ``folder/<job.name>.h5`` with this worker's env of the task; returns the sidecar
     entries, the failure counts and the number of rollouts run (``synthesize_scene``: only
     a scene's successful rollout is kept)."""
-    make = functools.partial(_make_env, job.task, job.robot)
+    make = functools.partial(_make_env, job.task, job.robot, job.perturbation)
+    token = f"demos {job.task} {job.robot} {levels_text(dict(job.perturbation))}"
     env = RecordEpisode(
-        _Shared(worker_state(f"demos {job.task} {job.robot}", make)),
+        _Shared(worker_state(token, make)),
         str(folder),
         trajectory_name=job.name,
         save_video=False,
@@ -174,7 +179,8 @@ def _pending(ledger: dict, task: str, robot: str, out: Path, n: int) -> list[Job
             if not is_training_seed(seed + SEED_BLOCK - 1):
                 raise ValueError(f"seed block {seed}.. leaves the training seeds")
             name = f"{task}_{robot}_{index:05d}"
-            jobs.append(Job(task, robot, out, index, name, seed, want))
+            levels = tuple(ledger.get("perturbation", {}).items())
+            jobs.append(Job(task, robot, out, index, name, seed, want, levels))
             remaining -= want
         index += 1
     return jobs
@@ -188,11 +194,14 @@ def generate(
     seed0: int = 0,
     workers: Workers | int = 1,
     shard_size: int = SHARD_SIZE,
+    perturbation: dict[str, int] | str | None = None,
 ) -> Report:
     """Write ``n`` successful demos of ``task`` with ``robot`` into ``out_dir`` (see the module
     docstring) with ``workers`` (local processes or a Ray cluster, see ``executor``),
-    ``shard_size`` demos per shard, resuming from its ledger (which fixes ``seed0`` and
-    ``shard_size``)."""
+    ``shard_size`` demos per shard, their scenes at the ``perturbation`` levels (recorded in
+    each spec), resuming from its ledger (which fixes ``seed0``, ``shard_size`` and the
+    perturbation)."""
+    levels = parse_levels(perturbation)
     check_choice("task", task, TASKS)
     check_choice("robot", robot, TASKS[task].supported_robots)
     workers = Workers.of(workers)
@@ -204,7 +213,7 @@ def generate(
     with OutputLock(out, f"instructmove demos generate {stem}"):
         clean_stale(out)  # what a killed run left
         (out / "shards").mkdir(parents=True, exist_ok=True)
-        report = _generate(task, robot, n, out, stem, seed0, workers, shard_size)
+        report = _generate(task, robot, n, out, stem, seed0, workers, shard_size, levels)
         clean_stale(out)  # what a worker killed mid-shard left (its shard ran again)
         return report
 
@@ -218,6 +227,7 @@ def _generate(
     seed0: int,
     workers: Workers,
     shard_size: int,
+    levels: dict[str, int],
 ) -> Report:
     ledger_path = out / f"{stem}.ledger.json"
     ledger = (
@@ -225,9 +235,14 @@ def _generate(
         if ledger_path.exists()
         else {"seed0": seed0, "shard_size": shard_size, "shards": []}
     )
-    for key, value in (("seed0", seed0), ("shard_size", shard_size)):
-        if ledger[key] != value:
-            raise ValueError(f"{ledger_path} was started with {key}={ledger[key]}, not {value}")
+    if levels and not ledger["shards"]:
+        ledger["perturbation"] = levels
+    given = (("seed0", seed0), ("shard_size", shard_size), ("perturbation", levels))
+    for key, value in given:
+        if ledger.get(key, {}) != value:
+            raise ValueError(
+                f"{ledger_path} was started with {key}={ledger.get(key, {})}, not {value}"
+            )
     jobs = _pending(ledger, task, robot, out, n)
     kept = sum(s["kept"] for s in ledger["shards"])
     with tqdm(total=n, initial=kept, desc=stem, unit="demo") as bar:
