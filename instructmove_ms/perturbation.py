@@ -373,3 +373,26 @@ def perturb(spec: EpisodeSpec, levels: Mapping[str, int], ctx: Context) -> Episo
                     f"text-indispensable ({ATTEMPTS} draws refused); use a lower level"
                 )
     return dataclasses.replace(spec, perturbation=record)
+
+
+#: How the README's table says each axis's numbers.
+DESCRIBE = {
+    "lighting": "intensity x{intensity[0]}-{intensity[1]}, key light turned {tilt:g} deg, "
+    "{kelvin[0]}-{kelvin[1]} K, {extra} lamps",
+    "table": "colour +-{tint} per channel, roughness {roughness[0]}-{roughness[1]}, metallic "
+    "{metallic[0]}-{metallic[1]}, height +-{height} m, stripes: {texture}",
+    "background": "floor colour +-{floor} per channel, {walls} walls",
+    "camera": "every camera moved {cm:g} cm and turned {deg:g} deg",
+    "robot_init": "arm joints + N(0, {std} rad)",
+    "layout": "each object up to {cm:g} cm and {deg:g} deg",
+    "language": "another template and expression, {pool} pool, verb synonyms: {synonyms}",
+}
+
+
+def levels_markdown() -> str:
+    """The declared levels as a markdown table (the README lists it)."""
+    lines = ["| axis | level 1 | level 2 | level 3 |", "|---|---|---|---|"]
+    for axis in AXES:
+        cells = [DESCRIBE[axis].format(**LEVELS[axis][k]) for k in range(1, MAX_LEVEL + 1)]
+        lines.append(f"| `{axis}` | " + " | ".join(cells) + " |")
+    return "\n".join(lines)

@@ -130,6 +130,8 @@ class PickAttributeEnv(InstructMoveEnv):
       apart); sizes differ by at least 1.3x in the largest dimension; colours are pairwise
       distinct so that every candidate can be named
     - positions (reference workspace, 0.05 m between footprints), yaw, template, robot joints
+    - with ``perturbation=``: lighting, table, background, cameras, robot joints, layout and
+      paraphrase at levels 0-3 (``instructmove_ms.perturbation``), drawn from the seed
 
     **Success Conditions:**
     - ``reach``: the TCP came within 0.02 m of the target's box (latched)

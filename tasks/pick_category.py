@@ -94,6 +94,8 @@ class PickCategoryEnv(InstructMoveEnv):
       between footprints) and yaw
     - the instruction's template and the category noun
     - robot initial joints: rest pose plus Gaussian noise (``robot_init_qpos_noise``)
+    - with ``perturbation=``: lighting, table, background, cameras, robot joints, layout and
+      paraphrase at levels 0-3 (``instructmove_ms.perturbation``), drawn from the seed
 
     **Success Conditions:**
     - ``reach``: the TCP came within 0.02 m of the target's box (latched)

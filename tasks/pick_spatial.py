@@ -111,6 +111,8 @@ class PickSpatialEnv(InstructMoveEnv):
     - positions: the target holds the relation by a margin (0.06 m sideways; near < 0.16 m,
       far > 0.26 m from the reference) and the distractor holds its opposite by the same
       margin; yaw, template, robot joints
+    - with ``perturbation=``: lighting, table, background, cameras, robot joints, layout and
+      paraphrase at levels 0-3 (``instructmove_ms.perturbation``), drawn from the seed
 
     **Success Conditions:**
     - ``reach``: the TCP came within 0.02 m of the target's box (latched)

@@ -88,6 +88,8 @@ class PlaceA2BEnv(InstructMoveEnv):
     - objects (small enough for every receptacle) and receptacles (interiors at least 0.1 m
       wide), from the split's pools
     - positions, yaw, template and the preposition (on for flat destinations), robot joints
+    - with ``perturbation=``: lighting, table, background, cameras, robot joints, layout and
+      paraphrase at levels 0-3 (``instructmove_ms.perturbation``), drawn from the seed
 
     **Success Conditions:**
     - ``reach_pick`` / ``lift_pick``: reach and lift of the target object, as in the pick

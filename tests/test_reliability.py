@@ -152,6 +152,27 @@ def _bad_inputs(tmp_path: Path, demo: Path) -> dict[str, tuple[list[str], str]]:
             ["demos", "generate", "--task", TASK, "-n", "1", "--workers", "0", *out],
             "workers must be at least 1, got 0",
         ),
+        "unknown axis": (
+            [*evaluate, "--policy", "random", "--perturb", "lights:2", *out],
+            "unknown perturbation axis 'lights'; axes: lighting,",
+        ),
+        "level out of range": (
+            ["demos", "generate", "--task", TASK, "-n", "1", "--perturb", "layout:5", *out],
+            "perturbation level 5 of 'layout' outside 0..3",
+        ),
+        "perturbed config": (
+            [
+                "eval",
+                "--config",
+                str(tmp_path / "unknown.json"),
+                "--policy",
+                "random",
+                *out,
+                "--perturb",
+                "camera:1",
+            ],
+            "--perturb applies to the stored sets (--task)",
+        ),
         "workers and ray": (
             [*evaluate, "--policy", "random", "--workers", "2", "--ray", "auto", *out],
             "--workers 2 with --ray",
