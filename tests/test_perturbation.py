@@ -229,3 +229,31 @@ def test_the_readme_lists_the_declared_levels():
 
     readme = (Path(__file__).parents[1] / "README.md").read_text()
     assert levels_markdown() in readme
+
+
+def test_robustness_rows_cross_conditions_with_their_own_baselines():
+    from instructmove_ms.robustness import robustness_rows, settings
+
+    def group(condition: str, success: float) -> dict:
+        return {
+            "family": "f",
+            "robot": "r",
+            "split": "seen",
+            "condition": condition,
+            "success": success,
+            "stage_score": success,
+        }
+
+    runs = []
+    for condition, base in (("normal", 0.9), ("generic", 0.3)):
+        for levels in settings("sweep=lighting"):
+            drop = 0.1 * levels.get("lighting", 0)
+            runs.append((levels, [group(condition, base - drop)]))
+    rows = robustness_rows(runs)
+    assert len(rows) == 2 * 4
+    for r in rows:
+        base = 0.9 if r["condition"] == "normal" else 0.3
+        assert r["baseline_success"] == base
+        assert r["success"] == pytest.approx(base - 0.1 * r["level"])
+    assert settings("lighting:2,camera:1") == [{"lighting": 2, "camera": 1}]
+    assert settings(None) is None
