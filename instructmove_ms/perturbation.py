@@ -4,13 +4,15 @@ Each axis has levels 0 (none) to 3 (strong), declared once in ``LEVELS``. ``pert
 an axis's values from the episode's seed (so the same scene can be run at every level and a
 perturbed episode rebuilds bit for bit) and stores them in ``EpisodeSpec.perturbation``:
 ``{"levels": {axis: level}, axis: values, ...}``. Axes that change the spec itself
-(``robot_init``, ``layout``, ``language``) rewrite its joints, poses or instruction; the
-others (``lighting``, ``table``, ``background``, ``camera``) are values the env renders.
+(``robot_init``, ``layout``, ``language``, ``distractors``) rewrite its joints, poses,
+instruction or objects; the others (``lighting``, ``table``, ``background``, ``camera``)
+are values the env renders.
 
-Nothing the instruction relies on moves: object instances (colour, material, size) stay;
+Nothing the instruction relies on moves: the stored objects (colour, material, size) stay;
 a jittered layout keeps the clearance, the workspace and the family's cue (the verifier
-checks the relation again); a paraphrase must still single out the goal. An axis and level
-that cannot keep an episode text-indispensable raises ``PerturbationError``.
+checks the relation again); a paraphrase must still single out the goal, and so must the
+scene with more distractors. An axis and level that cannot keep an episode
+text-indispensable raises ``PerturbationError``.
 """
 
 from __future__ import annotations
@@ -22,16 +24,30 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .episode import EpisodeSpec
+from .episode import EpisodeSpec, ObjectSpec
 from .layout import Placement, Workspace, corners, gap
+from .sampler import RoleError, more_members
 
 #: The axes, in the order a sweep runs them.
-AXES = ("lighting", "table", "background", "camera", "robot_init", "layout", "language")
+AXES = (
+    "lighting",
+    "table",
+    "background",
+    "camera",
+    "robot_init",
+    "layout",
+    "language",
+    "distractors",
+)
 MAX_LEVEL = 3
 #: How many draws a spec-changing axis tries before it refuses the episode.
 ATTEMPTS = 32
 #: How many moves the layout axis tries for one object before it leaves it in place.
 TRIES_PER_OBJECT = 16
+#: How many places the distractors axis tries for an added object, and how many draws of
+#: objects for each number it tries to add.
+TRIES_PER_PLACE = 256
+DRAWS_PER_COUNT = 8
 
 #: Every level's numbers, per axis (index = level; level 0 changes nothing).
 LEVELS: dict[str, tuple[dict, ...]] = {
@@ -90,6 +106,8 @@ LEVELS: dict[str, tuple[dict, ...]] = {
         {"pool": "unseen", "synonyms": False},
         {"pool": "unseen", "synonyms": True},
     ),
+    # this many more distractors of the family's own kind, up to the most it allows
+    "distractors": ({}, {"add": 1}, {"add": 2}, {"add": 3}),
 }
 
 
@@ -282,17 +300,21 @@ def _yaw(q) -> float:
     return 2.0 * math.atan2(q[3], q[0])
 
 
+def _footprint(ctx: Context, uuid: str) -> tuple[float, float]:
+    """Half extents of an instance's footprint padded by half the family's clearance."""
+    lo, hi = ctx.catalog[uuid].bounds
+    pad = ctx.task.clearance / 2
+    return (hi[0] - lo[0]) / 2 + pad, (hi[1] - lo[1]) / 2 + pad
+
+
 def _layout(spec: EpisodeSpec, rng, p: dict, ctx: Context) -> tuple[EpisodeSpec, dict] | None:
     """Each object in turn moved up to ``cm`` and turned up to ``deg`` around its stored
     pose where it keeps the clearance to every other object and its centre stays in the
     workspace, as the layout engine places them (one hemmed in by its neighbours may move
     less, or stay); None where the verifier refuses the result."""
-    pad, ws = ctx.task.clearance / 2, ctx.workspace
-    halves, places = [], []
-    for obj in spec.objects:
-        lo, hi = ctx.catalog[obj.uuid].bounds
-        halves.append(((hi[0] - lo[0]) / 2 + pad, (hi[1] - lo[1]) / 2 + pad))
-        places.append(Placement(obj.pose[0], obj.pose[1], _yaw(obj.pose[3:])))
+    ws = ctx.workspace
+    halves = [_footprint(ctx, obj.uuid) for obj in spec.objects]
+    places = [Placement(obj.pose[0], obj.pose[1], _yaw(obj.pose[3:])) for obj in spec.objects]
     quads = [corners(h, q) for h, q in zip(halves, places, strict=True)]
     for k in rng.permutation(len(places)):
         for _ in range(TRIES_PER_OBJECT):
@@ -325,6 +347,66 @@ def _layout(spec: EpisodeSpec, rng, p: dict, ctx: Context) -> tuple[EpisodeSpec,
     return moved, {"moves": [[float(v) for v in m] for m in moves]}
 
 
+def _add_distractors(
+    spec: EpisodeSpec, rng, count: int, ctx: Context
+) -> tuple[EpisodeSpec, dict] | None:
+    """``count`` more distractors drawn under the family's distractor role and placed where
+    the layout engine would allow them; None where none qualifies, no place is free or the
+    verifier refuses the scene."""
+    assigned: dict[str, list] = {}
+    for obj in spec.objects:
+        assigned.setdefault(obj.role, []).append(ctx.catalog[obj.uuid])
+    key = f"{spec.seed}:more:{int(rng.integers(1 << 31))}"
+    role = ctx.task.role("distractor")
+    try:
+        extra = more_members(role, assigned, count, ctx.catalog, spec.split, key)
+    except RoleError:
+        return None
+    quads = [
+        corners(_footprint(ctx, o.uuid), Placement(o.pose[0], o.pose[1], _yaw(o.pose[3:])))
+        for o in spec.objects
+    ]
+    ws, z, added = ctx.workspace, spec.objects[0].pose[2], []
+    for inst in extra:
+        for _ in range(TRIES_PER_PLACE):
+            place = Placement(
+                float(rng.uniform(*ws.x)),
+                float(rng.uniform(*ws.y)),
+                float(rng.uniform(-math.pi, math.pi)),
+            )
+            quad = corners(_footprint(ctx, inst.uuid), place)
+            if all(gap(quad, q) > 0 for q in quads):
+                quads.append(quad)
+                yaw = place.yaw / 2
+                pose = (place.x, place.y, z, math.cos(yaw), 0.0, 0.0, math.sin(yaw))
+                added.append(ObjectSpec(inst.uuid, inst.category, "distractor", pose))
+                break
+        else:
+            return None
+    first = len(spec.objects)
+    crowded = dataclasses.replace(
+        spec,
+        objects=spec.objects + tuple(added),
+        candidates=spec.candidates + tuple(range(first, first + len(added))),
+    )
+    if ctx.problems(crowded):
+        return None
+    return crowded, {"added": [o.uuid for o in added]}
+
+
+def _distractors(spec: EpisodeSpec, rng, p: dict, ctx: Context) -> tuple[EpisodeSpec, dict]:
+    """Up to ``add`` more distractors: as many as the family allows and the library can
+    add while the instruction still singles out the goal (``added`` lists them; it may be
+    fewer, or none)."""
+    present = sum(o.role == "distractor" for o in spec.objects)
+    for count in range(min(p["add"], ctx.task.count_limits["distractor"][1] - present), 0, -1):
+        for _ in range(DRAWS_PER_COUNT):
+            done = _add_distractors(spec, rng, count, ctx)
+            if done is not None:
+                return done
+    return spec, {"added": []}
+
+
 def _language(spec: EpisodeSpec, rng, p: dict, ctx: Context) -> tuple[EpisodeSpec, dict] | None:
     if spec.target < 0:  # generic, empty, absent: nothing singles out a goal to rephrase
         return spec, {"original": spec.instruction}
@@ -340,6 +422,7 @@ REWRITTEN: dict[str, Callable] = {
     "robot_init": _robot_init,
     "layout": _layout,
     "language": _language,
+    "distractors": _distractors,
 }
 
 
@@ -386,6 +469,7 @@ DESCRIBE = {
     "robot_init": "arm joints + N(0, {std} rad)",
     "layout": "each object up to {cm:g} cm and {deg:g} deg",
     "language": "another template and expression, {pool} pool, verb synonyms: {synonyms}",
+    "distractors": "up to {add} more distractors (as many as the family allows)",
 }
 
 

@@ -148,38 +148,75 @@ def rank(seed: int, role: str, slot: int, uuid: str) -> int:
     return int.from_bytes(digest, "little")
 
 
-def resolve_roles(
-    roles: tuple[RoleSpec, ...], catalog: Catalog, split: str, seed: int
-) -> dict[str, list[Instance]]:
-    """Assign instances to every role, in order; the same inputs give the same assignment."""
+def _pools(catalog: Catalog, split: str) -> dict[str, list[Instance]]:
     targets, seen = split_pools(catalog, split)
     known = {i.uuid for i in targets}
-    pools = {
+    return {
         "target": targets,
         "distractor": seen,
         "any": targets + [i for i in seen if i.uuid not in known],
     }
+
+
+def _fill(
+    role: RoleSpec,
+    pool: list[Instance],
+    assigned: dict[str, list[Instance]],
+    members: list[Instance],
+    slots: range,
+    seed: int | str,
+    where: str,
+) -> list[Instance]:
+    """``members`` of ``role`` with ``slots`` filled from ``pool``, each by the lowest rank
+    among the instances that satisfy every constraint."""
+    members = list(members)
+    used = {i.uuid for i in members}
+    for slot in slots:
+        candidates = [i for i in pool if i.uuid not in used]
+        for c in role.constraints:
+            others = members if c.other == EACH_OTHER else assigned.get(c.other)
+            if others is None:
+                raise ValueError(f"role {role.name!r} refers to unknown role {c.other!r}")
+            candidates = [i for i in candidates if _satisfies(i, c, others)]
+            if not candidates:
+                raise RoleError(
+                    f"role {role.name!r} slot {slot}: no instance satisfies '{c}' in {where} "
+                    f"(pool of {len(pool)} with tags {list(role.require)})"
+                )
+        choice = min(candidates, key=lambda i: rank(seed, role.name, slot, i.uuid))
+        members.append(choice)
+        used.add(choice.uuid)
+    return members
+
+
+def resolve_roles(
+    roles: tuple[RoleSpec, ...], catalog: Catalog, split: str, seed: int
+) -> dict[str, list[Instance]]:
+    """Assign instances to every role, in order; the same inputs give the same assignment."""
+    pools = _pools(catalog, split)
+    where = f"snapshot {catalog.name!r}, split {split!r}"
     assigned: dict[str, list[Instance]] = {}
     used: set[str] = set()
     for role in roles:
         pool = [i for i in pools[role.pool] if _fits(i, role) and i.uuid not in used]
-        members: list[Instance] = []
-        for slot in range(role.count):
-            candidates = pool
-            for c in role.constraints:
-                others = members if c.other == EACH_OTHER else assigned.get(c.other)
-                if others is None:
-                    raise ValueError(f"role {role.name!r} refers to unknown role {c.other!r}")
-                candidates = [i for i in candidates if _satisfies(i, c, others)]
-                if not candidates:
-                    raise RoleError(
-                        f"role {role.name!r} slot {slot}: no instance satisfies '{c}' in "
-                        f"snapshot {catalog.name!r}, split {split!r} (pool of {len(pool)} "
-                        f"with tags {list(role.require)})"
-                    )
-            choice = min(candidates, key=lambda i: rank(seed, role.name, slot, i.uuid))
-            members.append(choice)
-            used.add(choice.uuid)
-            pool = [i for i in pool if i.uuid != choice.uuid]
-        assigned[role.name] = members
+        assigned[role.name] = _fill(role, pool, assigned, [], range(role.count), seed, where)
+        used.update(i.uuid for i in assigned[role.name])
     return assigned
+
+
+def more_members(
+    role: RoleSpec,
+    assigned: dict[str, list[Instance]],
+    count: int,
+    catalog: Catalog,
+    split: str,
+    seed: int | str,
+) -> list[Instance]:
+    """``count`` more members of ``role`` for a scene already cast as ``assigned``, under
+    the role's constraints (a ``RoleError`` where none qualifies)."""
+    used = {i.uuid for group in assigned.values() for i in group}
+    pool = [i for i in _pools(catalog, split)[role.pool] if _fits(i, role) and i.uuid not in used]
+    members = assigned.get(role.name, [])
+    where = f"snapshot {catalog.name!r}, split {split!r}"
+    slots = range(len(members), len(members) + count)
+    return _fill(role, pool, assigned, members, slots, seed, where)[len(members) :]

@@ -26,16 +26,14 @@ def _stripes(color, stripes: dict) -> sapien.render.RenderTexture2D:
     )
 
 
-def build_table(scene, look: dict = DEFAULT_LOOK, scene_idx: int | None = None) -> None:
-    """A static table with its top face at z = 0 and legs down to the floor ``look``'s
-    ``height`` below ``TABLE_HEIGHT``, in sub-scene ``scene_idx`` (every one when None)."""
-    builder = scene.create_actor_builder()
+def _add_visuals(builder, look: dict, can_render: bool) -> None:
+    """The table top and legs of ``look`` (legs down to the floor ``look``'s ``height``
+    below ``TABLE_HEIGHT``)."""
     pose = sapien.Pose(p=[TABLE_CENTER_X, 0.0, -TABLE_HALF[2]])
-    builder.add_box_collision(pose, half_size=TABLE_HALF)
     material = sapien.render.RenderMaterial(
         base_color=[*look["color"], 1.0], roughness=look["roughness"], metallic=look["metallic"]
     )
-    if "stripes" in look and scene.can_render():
+    if "stripes" in look and can_render:
         material.base_color_texture = _stripes(look["color"], look["stripes"])
     builder.add_box_visual(pose, half_size=TABLE_HALF, material=material)
     height = TABLE_HEIGHT + look["height"]
@@ -51,18 +49,32 @@ def build_table(scene, look: dict = DEFAULT_LOOK, scene_idx: int | None = None) 
             builder.add_box_visual(
                 leg, half_size=(0.03, 0.03, height / 2 - 0.02), material=material
             )
-    if scene_idx is not None:
-        builder.set_scene_idxs([scene_idx])
+
+
+def build_table(scene, look: dict | None = DEFAULT_LOOK) -> None:
+    """The static ``table`` actor with its top face at z = 0, drawn with ``look`` (none:
+    collision only)."""
+    builder = scene.create_actor_builder()
+    pose = sapien.Pose(p=[TABLE_CENTER_X, 0.0, -TABLE_HALF[2]])
+    builder.add_box_collision(pose, half_size=TABLE_HALF)
+    if look is not None:
+        _add_visuals(builder, look, scene.can_render())
     builder.initial_pose = sapien.Pose()
-    builder.build_static(name="table" if scene_idx is None else f"table_{scene_idx}")
+    builder.build_static(name="table")
 
 
 def build_room(scene, looks: list[dict | None]) -> float:
-    """The table of each sub-scene (one shared table when none has a ``table`` look drawn)
-    and the floor below sub-scene 0's table; returns the floor's height."""
+    """The table and the floor below it; returns the floor's height. Where a sub-scene has
+    a ``table`` look drawn, the shared table keeps its collision and each sub-scene gets
+    its own visual-only table of its look (the floor follows sub-scene 0's height)."""
     if any(looks):
+        build_table(scene, None)
         for i, look in enumerate(looks):
-            build_table(scene, look or DEFAULT_LOOK, i)
+            builder = scene.create_actor_builder()
+            _add_visuals(builder, look or DEFAULT_LOOK, scene.can_render())
+            builder.set_scene_idxs([i])
+            builder.initial_pose = sapien.Pose()
+            builder.build_static(name=f"table_look_{i}")
     else:
         build_table(scene)
     floor = -(TABLE_HEIGHT + (looks[0] or DEFAULT_LOOK)["height"])

@@ -79,7 +79,7 @@ def test_a_stored_perturbed_episode_rebuilds_bit_for_bit(rgb_env):
         np.testing.assert_array_equal(image, images[uid])
 
 
-@pytest.mark.parametrize("axis", AXES)
+@pytest.mark.parametrize("axis", [a for a in AXES if a != "distractors"])
 def test_each_axis_keeps_the_objects_and_the_goal(rgb_env, axis):
     plain, images = _reset(rgb_env, {})
     spec, perturbed = _reset(rgb_env, {axis: 3})
@@ -175,7 +175,7 @@ def test_every_perturbed_episode_of_200_passes_the_verifier(env_id):
     opening = unwrapped.agent.gripper.max_width
     refused = 0
     for seed in range(200):
-        for axis in ("layout", "language", "robot_init"):
+        for axis in ("layout", "language", "robot_init", "distractors"):
             try:
                 spec = unwrapped.sample_episode(seed, perturbation={axis: 3})
             except PerturbationError:
@@ -257,3 +257,36 @@ def test_robustness_rows_cross_conditions_with_their_own_baselines():
         assert r["success"] == pytest.approx(base - 0.1 * r["level"])
     assert settings("lighting:2,camera:1") == [{"lighting": 2, "camera": 1}]
     assert settings(None) is None
+
+
+@pytest.mark.parametrize("axis", AXES)
+def test_the_planner_reads_every_perturbed_scene(axis):
+    from instructmove_ms.planning import PlanningScene
+
+    env = gym.make("PickCategory-InstructMove", robot_uids="franka", obs_mode="state")
+    env.reset(seed=1, options={"perturbation": {axis: 3}})
+    scene = PlanningScene.from_env(env)
+    assert len(scene.objects) == len(env.unwrapped.episode.objects)
+    env.close()
+
+
+def test_added_distractors_stand_in_the_scene_and_keep_one_goal():
+    env = gym.make("PickAttribute-InstructMove", robot_uids="franka", obs_mode="state")
+    env.reset(seed=0)
+    plain = env.unwrapped.episode
+    env.reset(seed=0, options={"perturbation": {"distractors": 3}})
+    spec = env.unwrapped.episode
+    (added,) = spec.perturbation["distractors"]["added"]  # the family allows one more
+    assert spec.objects[: len(plain.objects)] == plain.objects
+    new = spec.objects[-1]
+    assert new.uuid == added and new.role == "distractor"
+    assert spec.candidates == (*plain.candidates, len(plain.objects))
+    assert env.unwrapped.catalog[added].category == spec.target_object.category
+    still = torch.cat([env.unwrapped.agent.robot.get_qpos()[0, :7], torch.ones(1)])
+    for _ in range(10):  # the arm holds still; the added object stands where the spec puts it
+        env.step(still[None])
+    pos = env.unwrapped.objects[-1].pose.p[0].cpu().numpy()
+    np.testing.assert_allclose(pos[:2], new.pose[:2], atol=0.01)
+    opening = env.unwrapped.agent.gripper.max_width
+    assert verify(spec, env.unwrapped.catalog, env.unwrapped.task, opening) == []
+    env.close()
