@@ -358,7 +358,7 @@ def _eval_configs(args: argparse.Namespace):
         yield Path(args.out), dataclasses.replace(config, episodes=config.episodes[: args.episodes])
         return
     conditions = CONDITIONS if args.condition == "all" else (args.condition,)
-    sweep = perturbations is not None and args.perturb.startswith("sweep")
+    sweep = robustness.is_sweep(args.perturb)
     for condition in conditions:
         out = Path(args.out) / condition if len(conditions) > 1 else Path(args.out)
         for levels in perturbations or [{}]:
@@ -396,7 +396,7 @@ def _check_format(args: argparse.Namespace, config) -> None:
 def _cmd_eval(args: argparse.Namespace) -> int:
     from pathlib import Path
 
-    from instructmove_ms import heldout
+    from instructmove_ms import heldout, robustness
     from instructmove_ms.evaluation import check_backend, evaluate_config
     from instructmove_ms.metrics import markdown_table
     from instructmove_ms.video import VideoSettings
@@ -408,7 +408,7 @@ def _cmd_eval(args: argparse.Namespace) -> int:
     if args.write_config:
         if args.condition == "all":
             raise ValueError("--write-config writes one condition's episodes, not 'all'")
-        if (args.perturb or "").startswith("sweep"):
+        if robustness.is_sweep(args.perturb):
             raise ValueError("--write-config writes one perturbation setting, not a sweep")
         config = heldout.evaluator_config(
             args.task, args.robot, args.split, args.condition, args.episodes, None, args.perturb
@@ -432,10 +432,9 @@ def _cmd_eval(args: argparse.Namespace) -> int:
         )
         rows += summary["groups"]
         runs.append((config.perturbation, summary["groups"]))
-    if (args.perturb or "").startswith("sweep"):
-        from instructmove_ms.robustness import GROUP, write_robustness
-
-        print(markdown_table(write_robustness(Path(args.out), runs), (*GROUP, "axis", "level")))
+    if robustness.is_sweep(args.perturb):
+        rows = robustness.write_robustness(Path(args.out), runs)
+        print(markdown_table(rows, (*robustness.GROUP, "axis", "level")))
         return 0
     print(markdown_table(rows))
     if "policy" in summary:  # a served policy: its server's own timing

@@ -10,7 +10,6 @@ conditions re-render the instruction of the same scene.
 from __future__ import annotations
 
 import dataclasses
-import math
 from collections.abc import Callable
 from dataclasses import dataclass
 
@@ -207,12 +206,7 @@ def compose(
             failures.append(str(exc))
             continue
         objects = tuple(
-            ObjectSpec(
-                inst.uuid,
-                inst.category,
-                role,
-                (p.x, p.y, SPAWN_LIFT, math.cos(p.yaw / 2), 0.0, 0.0, math.sin(p.yaw / 2)),
-            )
+            ObjectSpec(inst.uuid, inst.category, role, p.pose(SPAWN_LIFT))
             for (inst, role), p in zip(members, places, strict=True)
         )
         candidates = tuple(k for k, (_, r) in enumerate(members) if r in CANDIDATE_ROLES)

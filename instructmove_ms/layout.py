@@ -27,6 +27,19 @@ class Placement:
     y: float
     yaw: float
 
+    def pose(self, z: float) -> tuple[float, ...]:
+        """The world pose (x, y, z, qw, qx, qy, qz) of this placement at height ``z``."""
+        return (self.x, self.y, z, math.cos(self.yaw / 2), 0.0, 0.0, math.sin(self.yaw / 2))
+
+
+def random_placement(rng: np.random.Generator, workspace: Workspace) -> Placement:
+    """A uniformly drawn centre in ``workspace`` and yaw."""
+    return Placement(
+        float(rng.uniform(*workspace.x)),
+        float(rng.uniform(*workspace.y)),
+        float(rng.uniform(-math.pi, math.pi)),
+    )
+
 
 def corners(half: tuple[float, float], p: Placement) -> np.ndarray:
     """The four footprint corners (4, 2) of a rectangle with ``half`` extents at ``p``."""
@@ -92,11 +105,7 @@ def sample_layout(
         placed: dict[int, tuple[Placement, np.ndarray]] = {}
         for i in order:
             for _ in range(tries_per_object):
-                p = Placement(
-                    float(rng.uniform(*workspace.x)),
-                    float(rng.uniform(*workspace.y)),
-                    float(rng.uniform(-math.pi, math.pi)),
-                )
+                p = random_placement(rng, workspace)
                 quad = corners(padded[i], p)
                 if all(_separated(quad, other) for _, other in placed.values()) and (
                     accept is None or accept(i, p, {k: v[0] for k, v in placed.items()})

@@ -25,7 +25,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .episode import EpisodeSpec, ObjectSpec
-from .layout import Placement, Workspace, corners, gap
+from .layout import Placement, Workspace, corners, gap, random_placement
 from .sampler import RoleError, more_members
 
 #: The axes, in the order a sweep runs them.
@@ -178,7 +178,7 @@ DEFAULT_LIGHTS = (((1.0, 1.0, -1.0), True), ((0.0, 0.0, -1.0), False))  # (direc
 LAMP_POWER = 1.5
 
 
-def _lighting(rng: np.random.Generator, p: dict) -> dict:
+def _lighting(rng: np.random.Generator, p: dict, ctx: Context) -> dict:
     scale = float(rng.uniform(*p["intensity"]))
     color = kelvin_rgb(float(rng.uniform(*p["kelvin"])))
     lights = [
@@ -216,7 +216,7 @@ TABLE_COLOR = (0.55, 0.40, 0.25)
 FLOOR_COLOR = (0.8, 0.8, 0.8)
 
 
-def _table(rng: np.random.Generator, p: dict) -> dict:
+def _table(rng: np.random.Generator, p: dict, ctx: Context) -> dict:
     values = {
         "color": _tint(rng, TABLE_COLOR, p["tint"]),
         "roughness": float(rng.uniform(*p["roughness"])),
@@ -231,7 +231,7 @@ def _table(rng: np.random.Generator, p: dict) -> dict:
     return values
 
 
-def _background(rng: np.random.Generator, p: dict) -> dict:
+def _background(rng: np.random.Generator, p: dict, ctx: Context) -> dict:
     walls = rng.permutation(3)[: p["walls"]]
     return {
         "floor": _tint(rng, FLOOR_COLOR, p["floor"]),
@@ -247,11 +247,11 @@ def _random_unit(rng: np.random.Generator) -> np.ndarray:
     return v / np.linalg.norm(v)
 
 
-def _camera(rng: np.random.Generator, p: dict, cameras: tuple[str, ...]) -> dict:
+def _camera(rng: np.random.Generator, p: dict, ctx: Context) -> dict:
     """Per camera: an offset of exactly ``cm`` and a turn of exactly ``deg`` about a random
     axis (a quaternion wxyz), both in the camera mount's frame."""
     values = {}
-    for uid in cameras:
+    for uid in ctx.cameras:
         offset = _random_unit(rng) * p["cm"] / 100.0
         axis, half = _random_unit(rng), math.radians(p["deg"]) / 2
         values[uid] = {
@@ -261,11 +261,12 @@ def _camera(rng: np.random.Generator, p: dict, cameras: tuple[str, ...]) -> dict
     return values
 
 
-#: Axes whose values the env renders, and how each is drawn.
+#: Axes whose values the env renders, and how each is drawn: (rng, level numbers, context).
 RENDERED: dict[str, Callable] = {
     "lighting": _lighting,
     "table": _table,
     "background": _background,
+    "camera": _camera,
 }
 
 
@@ -333,7 +334,7 @@ def _layout(spec: EpisodeSpec, rng, p: dict, ctx: Context) -> tuple[EpisodeSpec,
     objects = tuple(
         dataclasses.replace(
             obj,
-            pose=(q.x, q.y, obj.pose[2], math.cos(q.yaw / 2), 0.0, 0.0, math.sin(q.yaw / 2)),
+            pose=q.pose(obj.pose[2]),
         )
         for obj, q in zip(spec.objects, places, strict=True)
     )
@@ -369,17 +370,11 @@ def _add_distractors(
     ws, z, added = ctx.workspace, spec.objects[0].pose[2], []
     for inst in extra:
         for _ in range(TRIES_PER_PLACE):
-            place = Placement(
-                float(rng.uniform(*ws.x)),
-                float(rng.uniform(*ws.y)),
-                float(rng.uniform(-math.pi, math.pi)),
-            )
+            place = random_placement(rng, ws)
             quad = corners(_footprint(ctx, inst.uuid), place)
             if all(gap(quad, q) > 0 for q in quads):
                 quads.append(quad)
-                yaw = place.yaw / 2
-                pose = (place.x, place.y, z, math.cos(yaw), 0.0, 0.0, math.sin(yaw))
-                added.append(ObjectSpec(inst.uuid, inst.category, "distractor", pose))
+                added.append(ObjectSpec(inst.uuid, inst.category, "distractor", place.pose(z)))
                 break
         else:
             return None
@@ -441,9 +436,7 @@ def perturb(spec: EpisodeSpec, levels: Mapping[str, int], ctx: Context) -> Episo
     for axis, level in levels.items():
         p = LEVELS[axis][level]
         if axis in RENDERED:
-            record[axis] = RENDERED[axis](_rng(spec, axis, level), p)
-        elif axis == "camera":
-            record[axis] = _camera(_rng(spec, axis, level), p, ctx.cameras)
+            record[axis] = RENDERED[axis](_rng(spec, axis, level), p, ctx)
         else:
             for attempt in range(ATTEMPTS):
                 done = REWRITTEN[axis](spec, _rng(spec, axis, level, attempt), p, ctx)

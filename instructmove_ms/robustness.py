@@ -29,12 +29,17 @@ def settings(value: str | None) -> list[dict[str, int]] | None:
     """The perturbation settings ``value`` asks for; None for a plain run."""
     if not value:
         return None
-    if value == "sweep" or value.startswith("sweep="):
+    if is_sweep(value):
         axes = value.partition("=")[2].split(",") if "=" in value else list(AXES)
         for axis in axes:
             parse_levels({axis: 1})  # names an unknown axis
         return [{}] + [{a: level} for a in axes for level in range(1, MAX_LEVEL + 1)]
     return [parse_levels(value)]
+
+
+def is_sweep(value: str | None) -> bool:
+    """Whether a ``--perturb`` value asks for a sweep."""
+    return bool(value) and (value == "sweep" or value.startswith("sweep="))
 
 
 def folder_name(levels: dict[str, int]) -> str:
