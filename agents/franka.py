@@ -48,6 +48,7 @@ class FrankaInstructMove(InstructMoveAgent, Panda):
     uid = "franka"
     #: A top-down grasp stays well conditioned from 0.3 m in front of the base.
     workspace = Workspace(x=(0.3, 0.6), y=(-0.35, 0.35))
+    scene_cameras = ("ext1_camera", "ext2_camera")
     keyframes = dict(rest=Keyframe(qpos=FRANKA_REST_QPOS.copy(), pose=sapien.Pose()))
     #: ManiSkill's normalised Panda gripper: [-1, 1] spans finger targets -0.01..0.04 m; the
     #: TCP's y axis is the fingers' axis.

@@ -59,6 +59,9 @@ class InstructMoveAgent:
 
     #: Where objects may be placed: the reference workspace, narrowed to the robot's reach.
     workspace = Workspace()
+    #: The static or exterior cameras that see the whole table (visibility is measured in
+    #: them; wrist cameras are left out).
+    scene_cameras: ClassVar[tuple[str, ...]]
     gripper: ClassVar[Gripper]
     joint_limits: ClassVar[JointLimits]
     demo_pace: ClassVar[float]

@@ -174,6 +174,7 @@ class PiperX(InstructMoveAgent, BaseAgent):
     urdf_path = str(URDF_DIR / "piperx_dual.urdf")
     urdf_config = _finger_materials(sides)
     keyframes = dict(rest=Keyframe(qpos=rest_qpos(sides), pose=sapien.Pose()))
+    scene_cameras = ("static_camera",)
 
     #: The action value is the width itself; the fingers slide along link6's (and the
     #: TCP's) x axis.

@@ -1,8 +1,10 @@
 """Referring expressions from our own grammar, every phrase true of its instance.
 
-Phrases combine a category noun with the instance's annotated colours, material and
-distinctive parts ("the red mug", "ceramic mug with a handle"). About 15 go to the seen pool
-and 5 to the unseen pool, split deterministically by a hash of (uuid, phrase).
+Phrases combine a category noun with the colour the camera shows of it (one of its stated
+colours, ``appearance.shown_color``, said as people say it: "clear", "gold"), its material
+and distinctive parts ("the red mug", "ceramic mug with a handle"). Shape words are left to
+the attribute cue, where they tell objects apart. About 15 go to the seen pool and 5 to the
+unseen pool, split deterministically by a hash of (uuid, phrase).
 """
 
 from __future__ import annotations
@@ -10,6 +12,7 @@ from __future__ import annotations
 import hashlib
 import re
 
+from .appearance import shown_color
 from .catalog import Instance
 
 #: Material adjectives; "organic" (fruit, food) has none that a person would say.
@@ -70,6 +73,14 @@ SHAPE_ADJECTIVE = {
 }
 SEEN, UNSEEN = 15, 5
 
+#: Colour words as people say them, where the annotation's word is not ("transparent").
+COLOR_WORDS = {"transparent": "clear", "golden": "gold"}
+
+
+def color_word(color: str) -> str:
+    """How a person says the annotated colour ``color``."""
+    return COLOR_WORDS.get(color, color)
+
 
 def _base_name(part_name: str) -> str:
     return re.sub(r"(_[a-z]?[+-]?\d+)+$", "", part_name)
@@ -100,28 +111,27 @@ def _with(word: str, color: str | None) -> str:
 
 def all_phrases(inst: Instance) -> list[str]:
     """Every phrase the grammar makes for ``inst`` (deduplicated, in a fixed order)."""
-    color = inst.colors[0]
-    colors = " and ".join(inst.colors)
+    shown = shown_color(inst)
+    color = color_word(shown) if shown else None
+    colors = " and ".join(color_word(c) for c in inst.colors)
     material = MATERIAL_ADJECTIVE.get(inst.material)
-    shape = SHAPE_ADJECTIVE.get(inst.shape)
     out: list[str] = []
     for noun in inst.nouns:
-        out += [
-            noun,
-            f"{color} {noun}",
-            f"{noun} that {_be(noun)} {color}",
-            f"{color}-colored {noun}",
-        ]
-        if shape:
-            out += [f"{shape} {noun}", f"{shape} {color} {noun}"]
-        if len(inst.colors) == 2:
+        out.append(noun)
+        if color:
+            out += [f"{color} {noun}", f"{noun} that {_be(noun)} {color}"]
+        if len(inst.colors) == 2 and shown:
             out.append(f"{colors} {noun}")
         if material:
-            out += [f"{material} {noun}", f"{color} {material} {noun}"]
+            out.append(f"{material} {noun}")
+            if color:
+                out.append(f"{color} {material} {noun}")
         for word, part_color in features(inst):
-            out += [f"{noun} {_with(word, None)}", f"{color} {noun} {_with(word, None)}"]
-            if part_color != color:
-                out.append(f"{noun} {_with(word, part_color)}")
+            out.append(f"{noun} {_with(word, None)}")
+            if color:
+                out.append(f"{color} {noun} {_with(word, None)}")
+            if part_color != shown:
+                out.append(f"{noun} {_with(word, color_word(part_color))}")
     return list(dict.fromkeys(out))
 
 

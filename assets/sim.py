@@ -2,8 +2,13 @@
 
 from __future__ import annotations
 
+from collections.abc import Iterator
+from contextlib import contextmanager
+from functools import cache
+
 import numpy as np
 import sapien
+from mani_skill.envs.utils.system.backend import parse_sim_and_render_backend
 
 from .catalog import Instance
 from .sapien_builder import actor_builder, physical_material
@@ -23,9 +28,41 @@ def look_at(eye, target, up=(0.0, 0.0, 1.0)) -> sapien.Pose:
     return sapien.Pose(mat)
 
 
+@cache
+def _render_device() -> sapien.Device:
+    """The device ManiSkill renders on by default here (SAPIEN renders on one device per
+    process, so our own scenes must use the same one)."""
+    return parse_sim_and_render_backend("cpu", "gpu").render_device
+
+
+@contextmanager
+def sapien_physics() -> Iterator[None]:
+    """SAPIEN's default physics settings for the scenes, bodies and shapes made inside
+    (a ManiSkill env sets its own as process-wide defaults), restored afterwards."""
+    physx = sapien.physx
+    kinds = ("scene", "body", "shape")
+    saved = [getattr(physx, f"get_{k}_config")() for k in kinds]
+    defaults = (physx.PhysxSceneConfig(), physx.PhysxBodyConfig(), physx.PhysxShapeConfig())
+    for kind, config in zip(kinds, defaults, strict=True):
+        getattr(physx, f"set_{kind}_config")(config)
+    try:
+        yield
+    finally:
+        for kind, config in zip(kinds, saved, strict=True):
+            getattr(physx, f"set_{kind}_config")(config)
+
+
+def bare_scene() -> sapien.Scene:
+    """An empty CPU-physics scene (SAPIEN's physics settings) with its render system on
+    ManiSkill's device."""
+    with sapien_physics():
+        system = sapien.physx.PhysxCpuSystem()
+    return sapien.Scene([system, sapien.render.RenderSystem(_render_device())])
+
+
 def table_scene(render: bool = False) -> sapien.Scene:
     """Ground plane as the table top at z = 0 (wood friction), lit when ``render``."""
-    scene = sapien.Scene()
+    scene = bare_scene()
     scene.set_timestep(TIMESTEP)
     scene.add_ground(0.0, render=render, material=physical_material("wood"))
     if render:
@@ -42,4 +79,5 @@ def spawn(
     builder.initial_pose = sapien.Pose(
         [xy[0], xy[1], z], [np.cos(yaw / 2), 0.0, 0.0, np.sin(yaw / 2)]
     )
-    return builder.build(name=instance.uuid)
+    with sapien_physics():
+        return builder.build(name=instance.uuid)

@@ -160,6 +160,11 @@ def _cmd_assets_build(args: argparse.Namespace) -> int:
         f"snapshot {args.name!r}: {len(entries)} instances of {len(categories)} categories "
         f"-> {path}"
     )
+    if args.name == snap.DEFAULT_SNAPSHOT:  # other snapshots' colours are rendered on use
+        from instructmove_ms.assets import appearance
+
+        instances = snap.load_snapshot(args.name).instances
+        print(f"rendered colours -> {appearance.write_table(instances, appearance.table_path())}")
     return 0
 
 
@@ -193,9 +198,7 @@ def _cmd_episodes_write(args: argparse.Namespace) -> int:
     for env_id in tasks:
         for robot in [args.robot] if args.robot else TASKS[env_id].supported_robots:
             for split in EVAL_SPLITS:
-                env = gym.make(
-                    env_id, robot_uids=robot, split=split, obs_mode="state", render_backend="none"
-                )
+                env = gym.make(env_id, robot_uids=robot, split=split, obs_mode="state")
                 specs = list(
                     tqdm(
                         heldout.generate_set(env, args.n),
@@ -219,6 +222,24 @@ def _cmd_episodes_show(args: argparse.Namespace) -> int:
     if not 0 <= args.index < len(specs):
         raise ValueError(f"--index {args.index} outside the set's 0..{len(specs) - 1}")
     print(json.dumps(specs[args.index].to_dict(), indent=2))
+    return 0
+
+
+def _cmd_episodes_sheet(args: argparse.Namespace) -> int:
+    from pathlib import Path
+
+    from tqdm import tqdm
+
+    from instructmove_ms.episode_sheet import episode_sheet
+    from instructmove_ms.splits import EVAL_SPLITS
+    from instructmove_ms.tasks import TASKS
+    from instructmove_ms.validation import check_choice
+
+    check_choice("task", args.task, TASKS)
+    robot = args.robot or TASKS[args.task].default_robot
+    for split in tqdm([args.split] if args.split else EVAL_SPLITS, desc="sheets", unit="sheet"):
+        name = f"{TASKS[args.task].family}_{robot}_{split}.png"
+        tqdm.write(str(episode_sheet(args.task, robot, split, Path(args.out) / name, args.n)))
     return 0
 
 
@@ -493,6 +514,15 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--split", default="seen")
     p.add_argument("--index", type=int, default=0)
     p.set_defaults(func=_cmd_episodes_show)
+    p = episodes_sub.add_parser(
+        "sheet", help="contact sheet PNGs of stored episodes with their instructions"
+    )
+    p.add_argument("--task", required=True, help="env id")
+    p.add_argument("--robot", default=None, help="default: the family's robot")
+    p.add_argument("--split", default=None, help="one split (default: every one)")
+    p.add_argument("--n", type=int, default=20, help="episodes per sheet")
+    p.add_argument("--out", required=True, help="folder for <family>_<robot>_<split>.png")
+    p.set_defaults(func=_cmd_episodes_sheet)
     demos = sub.add_parser("demos", help="planned demonstrations").add_subparsers(
         dest="demos_command", required=True
     )

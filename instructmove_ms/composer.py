@@ -30,11 +30,14 @@ from .layout import Workspace, sample_layout
 from .sampler import RoleError, RoleSpec, names_clash, resolve_roles
 from .splits import UNSEEN_SPLITS
 from .validation import check_choice
+from .verify import VerificationError
 
 SPAWN_LIFT = 0.002  # objects spawn this far above the table and settle
 CANDIDATE_ROLES = ("target", "distractor")
 DESTINATION_ROLES = ("destination", "distractor_destination")
 MAX_ATTEMPTS = 64
+#: Certifies a composed spec or raises ``verify.VerificationError``.
+Gate = Callable[[EpisodeSpec], EpisodeSpec]
 
 
 class CompositionError(RuntimeError):
@@ -161,6 +164,29 @@ def rephrase(
     )
 
 
+def _variant(
+    task: TaskSpec,
+    spec: EpisodeSpec,
+    members: Members,
+    rng: np.random.Generator,
+    catalog: Catalog,
+    condition: str,
+    gate: Gate,
+) -> EpisodeSpec:
+    """The certified ``spec`` under ``condition``: the scene stays, its instruction is
+    drawn again until the gate passes it."""
+    problems: list[str] = []
+    for _ in range(MAX_ATTEMPTS):
+        try:
+            return gate(_condition(task, spec, members, rng, catalog, spec.split, condition))
+        except VerificationError as exc:
+            problems = exc.problems
+    raise CompositionError(
+        f"{task.family}: no {condition} instruction for the scene of seed {spec.seed} passes "
+        f"the verifier after {MAX_ATTEMPTS} draws; last problems: {problems}"
+    )
+
+
 def compose(
     task: TaskSpec,
     roles: tuple[RoleSpec, ...],
@@ -169,10 +195,16 @@ def compose(
     seed: int,
     robot: str,
     sample_qpos: Callable[[np.random.Generator], np.ndarray],
+    gate: Gate,
     condition: str = "normal",
     workspace: Workspace | None = None,
 ) -> EpisodeSpec:
-    """The episode of ``seed`` for ``task``: assets, layout, robot joints, instruction."""
+    """The episode of ``seed`` for ``task``: assets, layout, robot joints, instruction.
+
+    ``gate`` certifies a spec or raises ``VerificationError`` (see ``verify.certify``):
+    a scene whose normal spec it refuses is drawn again (the next attempt); the
+    condition's instruction of a passed scene is drawn again until it passes, so every
+    condition of a seed shares one scene."""
     check_choice("condition", condition, CONDITIONS)
     rng = np.random.default_rng(seed)
     failures = []
@@ -229,7 +261,14 @@ def compose(
             goal_destination=dest,
             cue=cue,
         )
-        return _condition(task, spec, members, rng, catalog, split, condition)
+        try:
+            spec = gate(spec)
+        except VerificationError as exc:
+            failures.append(str(exc))
+            continue
+        if condition == "normal":
+            return spec
+        return _variant(task, spec, members, rng, catalog, condition, gate)
     raise CompositionError(
         f"{task.family}: no episode for seed {seed} in split {split!r} after {MAX_ATTEMPTS} "
         f"attempts; last reasons: {failures[-3:]}"

@@ -12,7 +12,9 @@ import json
 from dataclasses import MISSING, asdict, dataclass, field, fields
 
 CONDITIONS = ("normal", "alternative_target", "generic", "empty", "absent_object")
-SPEC_VERSION = 1
+#: Version 2 adds the verifier's ``certificate``; version 1 specs (without one) still read.
+SPEC_VERSION = 2
+READABLE_VERSIONS = (1, 2)
 
 
 def actor_name(k: int) -> str:
@@ -48,6 +50,8 @@ class EpisodeSpec:
     condition: str = "normal"
     #: the perturbation axes' levels and drawn values (see ``perturbation``); {} for none
     perturbation: dict = field(default_factory=dict)
+    #: why the instruction singles out the goal, as the verifier found it (``verify.certify``)
+    certificate: dict = field(default_factory=dict)
     version: int = field(default=SPEC_VERSION)
 
     def __post_init__(self) -> None:
@@ -57,11 +61,12 @@ class EpisodeSpec:
             raise ValueError("the target must be one of the candidate goals")
 
     def to_dict(self) -> dict:
-        """The spec as plain data; an unperturbed spec has no ``perturbation`` key, so it
-        reads as it did before perturbations existed."""
+        """The spec as plain data; empty ``perturbation`` and ``certificate`` are left out,
+        so an unperturbed, uncertified spec reads as it did before they existed."""
         data = asdict(self)
-        if not data["perturbation"]:
-            del data["perturbation"]
+        for key in ("perturbation", "certificate"):
+            if not data[key]:
+                del data[key]
         return data
 
     def to_json(self) -> str:
@@ -78,10 +83,10 @@ class EpisodeSpec:
             raise ValueError(f"episode spec lacks {', '.join(missing)}")
         if unknown:
             raise ValueError(f"episode spec has unknown fields {', '.join(unknown)}")
-        if data.get("version", SPEC_VERSION) != SPEC_VERSION:
+        if data.get("version", SPEC_VERSION) not in READABLE_VERSIONS:
             raise ValueError(
                 f"episode spec version {data.get('version')!r}; "
-                f"this release reads version {SPEC_VERSION}"
+                f"this release reads versions {READABLE_VERSIONS}"
             )
         values = dict(data)
         values["objects"] = tuple(

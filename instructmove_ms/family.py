@@ -88,8 +88,8 @@ class Cue:
     in ``EpisodeSpec.cue``, and the roles constrained so that it can single out the target),
     ``admits`` (refuse a cast the cue cannot phrase), ``arrange`` (layout order and
     predicate), ``phrase`` (the words naming the goal object) and ``alternative`` (the cue
-    that names another candidate); the verifier calls ``matches``. Subclasses live with
-    their family in ``tasks/``.
+    that names another candidate); the verifier calls ``matches`` and ``explain``.
+    Subclasses live with their family in ``tasks/``.
     """
 
     def draw(
@@ -122,6 +122,11 @@ class Cue:
     def matches(self, spec: EpisodeSpec, catalog: Catalog, k: int) -> bool:
         """Whether candidate ``k`` fits ``spec``'s instruction under its cue."""
         raise NotImplementedError
+
+    def explain(self, spec: EpisodeSpec, catalog: Catalog, k: int) -> dict:
+        """What the cue reads of candidate ``k`` (JSON data for the verifier's certificate:
+        its attribute value, its bearing from the reference, ...); by default nothing."""
+        return {}
 
 
 @dataclass(frozen=True)

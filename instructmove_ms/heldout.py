@@ -12,11 +12,14 @@ episode exactly (see ``InstructMoveEnv.reset``).
 
 from __future__ import annotations
 
+import dataclasses
 import json
 from collections.abc import Iterator
 from dataclasses import dataclass
 from importlib import resources
 from pathlib import Path
+
+from mani_skill.agents.registration import REGISTERED_AGENTS
 
 from .assets import DEFAULT_SNAPSHOT, load_snapshot
 from .episode import CONDITIONS, EpisodeSpec
@@ -24,9 +27,13 @@ from .files import write_json, write_text
 from .perturbation import parse_levels
 from .splits import EVAL_SPLITS, eval_seed
 from .tasks import TASKS
+from .tasks.visibility import hidden_objects, measure
 from .validation import check_choice
+from .verify import verify
 
 EPISODES_PER_SET = 100
+#: Seeds tried per kept episode at most (seeds whose scenes hide a candidate are skipped).
+SEEDS_PER_EPISODE = 5
 
 
 def default_folder() -> Path:
@@ -55,9 +62,24 @@ def load_set(env_id: str, robot: str, split: str, folder: Path | None = None) ->
 
 
 def generate_set(env, count: int = EPISODES_PER_SET) -> Iterator[EpisodeSpec]:
-    """Sample ``count`` held-out specs of the split ``env`` was made for."""
-    for index in range(count):
-        yield env.unwrapped.sample_episode(eval_seed(env.unwrapped.split, index))
+    """``count`` held-out specs of the split ``env`` (a rendering env) was made for: the
+    first evaluation seeds whose episodes show every candidate and receptacle to the scene
+    cameras, each certified with its visibility figures (``tasks.visibility``)."""
+    unwrapped = env.unwrapped
+    kept = 0
+    for index in range(count * SEEDS_PER_EPISODE):
+        if kept == count:
+            return
+        spec = unwrapped.sample_episode(eval_seed(unwrapped.split, index))
+        env.reset(options={"episode": spec})
+        figures = measure(env)
+        if not hidden_objects(figures):
+            kept += 1
+            yield dataclasses.replace(spec, certificate={**spec.certificate, "visibility": figures})
+    raise RuntimeError(
+        f"only {kept} of {count} {unwrapped.task.env_id} episodes show every candidate in "
+        f"{count * SEEDS_PER_EPISODE} seeds"
+    )
 
 
 @dataclass(frozen=True)
@@ -159,7 +181,8 @@ class EvaluatorConfig:
 
     def check(self) -> None:
         """Raise a ``ValueError`` naming the first episode the config's env cannot build:
-        one of another family or robot, or with an object its snapshot lacks."""
+        one of another family or robot, with an object its snapshot lacks, or one the
+        verifier refuses."""
         if not self.episodes:
             raise ValueError("the evaluator config holds no episodes")
         task = TASKS.get(self.env_id)
@@ -180,6 +203,13 @@ class EvaluatorConfig:
                     raise ValueError(
                         f"config episode {e.episode_id!r}: object {obj.uuid!r} "
                         f"({obj.category}) is not in snapshot {catalog.name!r}"
+                    )
+            if task is not None and robot is not None:
+                opening = REGISTERED_AGENTS[robot].agent_cls.gripper.max_width
+                problems = verify(e.spec, catalog, task, opening)
+                if problems:
+                    raise ValueError(
+                        f"config episode {e.episode_id!r} fails the verifier: {'; '.join(problems)}"
                     )
 
     @classmethod

@@ -4,8 +4,9 @@ from __future__ import annotations
 
 import numpy as np
 
+from .assets.appearance import shown_color
 from .assets.catalog import Instance
-from .assets.expressions import MATERIAL_ADJECTIVE, SHAPE_ADJECTIVE, expressions
+from .assets.expressions import MATERIAL_ADJECTIVE, SHAPE_ADJECTIVE, color_word, expressions
 from .splits import UNSEEN_SPLITS
 
 
@@ -52,9 +53,11 @@ def noun(rng: np.random.Generator, instance: Instance) -> str:
 
 def attribute_word(instance: Instance, attribute: str, direction: str = "") -> str | None:
     """The word naming ``instance``'s value of ``attribute`` (None if people have none):
-    its first colour, material or shape adjective, or a superlative for its extent."""
+    the colour the camera shows of it, its material or shape adjective, or a superlative
+    for its extent."""
     if attribute == "color":
-        return instance.colors[0]
+        shown = shown_color(instance)
+        return color_word(shown) if shown else None
     if attribute == "material":
         return MATERIAL_ADJECTIVE.get(instance.material)
     if attribute == "shape":
@@ -64,12 +67,30 @@ def attribute_word(instance: Instance, attribute: str, direction: str = "") -> s
 
 def names(instance: Instance, text: str) -> bool:
     """Whether ``text`` names ``instance`` by one of its nouns (as whole words)."""
-    return any(f" {n} " in f" {text} " for n in instance.nouns)
+    return named_noun(instance, text) is not None
+
+
+def named_noun(instance: Instance, text: str) -> str | None:
+    """The longest of ``instance``'s nouns that ``text`` says (as whole words), if any."""
+    said = [n for n in instance.nouns if f" {n} " in f" {text} "]
+    return max(said, key=len) if said else None
+
+
+def head(noun: str) -> str:
+    """The head word of a noun ("bin" of "storage bin"), singular."""
+    word = noun.split()[-1]
+    return word[:-1] if is_plural(word) else word
+
+
+#: Flat receptacles (interior shallower than this, m: plates, trays, boards) take "onto".
+FLAT_INTERIOR = 0.03
 
 
 def preposition(receptacle: Instance) -> str:
-    """'on' for flat destinations (plates, boards, mats), 'in' for the others."""
-    return "on" if receptacle.interior is not None and receptacle.interior.height < 0.03 else "in"
+    """'onto' for flat receptacles (plates, trays, boards, mats), 'into' for the others
+    (bins, boxes, bowls, cups)."""
+    interior = receptacle.interior
+    return "onto" if interior is not None and interior.height < FLAT_INTERIOR else "into"
 
 
 #: The grammar's synonyms of the templates' verbs (a template's first word, or the verb
@@ -81,11 +102,11 @@ VERB_SYNONYMS = {
     "lift": "hoist",
     "grasp": "clutch",
     "take": "get",
+    "get": "bring",
     "raise": "hold up",
     "put": "drop",
     "place": "position",
     "move": "transfer",
-    "set": "rest",
 }
 
 

@@ -1,18 +1,33 @@
-"""Spatial relations in the robot's frame (+x forward, +y left), with margins.
+"""Spatial relations in the robot's frame (+x forward, +y left), as a person reads them.
 
-A relation holds when it holds by a margin a person would agree with; it fails clearly when
-its opposite holds by the same margin. Layouts for PickSpatial put the target where the
-relation holds and the same-category distractor where it clearly fails.
+A direction relation ("left of", "behind", ...) holds when the object lies within ``CONE``
+degrees of the relation's direction from the reference, at least ``MARGIN`` along it and
+within ``REACH`` of it: "behind the hex key" is something roughly behind it, not beside
+it. "near" and "far from" are distances with a clear gap between them. A relation fails
+clearly when the opposite relation holds: PickSpatial puts the target where its relation
+holds and the same-category distractor where the opposite one does.
 """
 
 from __future__ import annotations
 
+import math
+from dataclasses import asdict, dataclass
+
 import numpy as np
 
 RELATIONS = ("left of", "right of", "in front of", "behind", "near", "far from")
-#: Side relations: the offset along the axis beyond this margin, in metres.
-SIDE_MARGIN = 0.06
-#: near / far: the near object within NEAR of the reference, the far one beyond FAR.
+#: Unit direction of each direction relation; "in front of" is nearer the robot.
+DIRECTIONS = {
+    "left of": (0.0, 1.0),
+    "right of": (0.0, -1.0),
+    "in front of": (-1.0, 0.0),
+    "behind": (1.0, 0.0),
+}
+#: Largest angle, in degrees, between the object's bearing and the relation's direction.
+CONE = 45.0
+#: Smallest offset along the direction, and largest distance from the reference, in metres.
+MARGIN, REACH = 0.06, 0.35
+#: near: within NEAR of the reference; far from: beyond FAR (a gap of FAR - NEAR between).
 NEAR, FAR = 0.16, 0.26
 OPPOSITE = {
     "left of": "right of",
@@ -22,30 +37,51 @@ OPPOSITE = {
     "near": "far from",
     "far from": "near",
 }
-#: How instructions say each relation.
+#: How instructions say each relation: every phrase reads as where the object is.
 PHRASES = {
     "left of": ("to the left of", "left of", "on the left side of"),
     "right of": ("to the right of", "right of", "on the right side of"),
     "in front of": ("in front of",),
     "behind": ("behind",),
     "near": ("near", "next to", "closest to"),
-    "far from": ("far from", "farthest from", "away from"),
+    "far from": ("farther from", "farthest from"),
 }
 
 
+@dataclass(frozen=True)
+class Bearing:
+    """Where an object lies from the reference, read for one relation: its offset along the
+    relation's direction (m; for near/far, the distance), the angle off that direction
+    (degrees; 0 for near/far) and its distance (m)."""
+
+    offset: float
+    angle: float
+    distance: float
+
+    def as_dict(self) -> dict:
+        return {k: round(v, 4) for k, v in asdict(self).items()}
+
+
+def bearing(relation: str, obj_xy, ref_xy) -> Bearing:
+    """How ``obj`` lies from the reference with respect to ``relation``."""
+    d = np.asarray(obj_xy, float)[:2] - np.asarray(ref_xy, float)[:2]
+    distance = float(np.hypot(*d))
+    if relation not in DIRECTIONS:
+        return Bearing(distance, 0.0, distance)
+    u = np.asarray(DIRECTIONS[relation])
+    along = float(d @ u)
+    across = float(d[0] * u[1] - d[1] * u[0])
+    return Bearing(along, math.degrees(math.atan2(abs(across), along)), distance)
+
+
 def holds(relation: str, obj_xy, ref_xy) -> bool:
-    """Whether ``obj`` is ``relation`` the reference, by the margin."""
-    d = np.asarray(obj_xy, float) - np.asarray(ref_xy, float)
-    if relation == "left of":
-        return d[1] > SIDE_MARGIN
-    if relation == "right of":
-        return d[1] < -SIDE_MARGIN
-    if relation == "in front of":  # between the robot and the reference
-        return d[0] < -SIDE_MARGIN
-    if relation == "behind":
-        return d[0] > SIDE_MARGIN
-    dist = float(np.linalg.norm(d))
-    return dist < NEAR if relation == "near" else dist > FAR
+    """Whether ``obj`` is ``relation`` the reference, by the margin and within the cone."""
+    b = bearing(relation, obj_xy, ref_xy)
+    if relation == "near":
+        return b.distance < NEAR
+    if relation == "far from":
+        return b.distance > FAR
+    return b.offset > MARGIN and b.angle <= CONE and b.distance <= REACH
 
 
 def unique_holder(relation: str, candidates_xy: list, ref_xy) -> int | None:

@@ -32,7 +32,7 @@ from instructmove_ms.family import TaskSpec
 from instructmove_ms.perturbation import Context, parse_levels, perturb
 from instructmove_ms.splits import SPLITS
 from instructmove_ms.validation import check_choice, check_range
-from instructmove_ms.verify import verify
+from instructmove_ms.verify import certify, verify
 
 from .scene import build_room
 from .scenery import backdrop, light, move_cameras
@@ -123,7 +123,8 @@ class InstructMoveEnv(BaseEnv):
 
     # Episodes -------------------------------------------------------------------------
     def reset(self, seed=None, options=None):
-        """ManiSkill's reset; ``options={"episode": spec}`` rebuilds that episode exactly.
+        """ManiSkill's reset; ``options={"episode": spec}`` rebuilds that episode exactly
+        once the verifier passes it (``verify.VerificationError`` otherwise).
 
         ``spec`` is an :class:`EpisodeSpec`, its dict, or a list of either (one per
         sub-scene). Pass the dict form when recording so that the reset kwargs stay JSON.
@@ -159,7 +160,7 @@ class InstructMoveEnv(BaseEnv):
                 self.catalog[obj.uuid]  # raises with the unknown uuid
         if len({len(s.objects) for s in specs}) != 1:
             raise ValueError("all sub-scenes must hold the same number of objects")
-        return specs
+        return [self.certified(s) for s in specs]
 
     def sample_episode(
         self, seed: int, condition: str | None = None, perturbation=None
@@ -174,18 +175,25 @@ class InstructMoveEnv(BaseEnv):
             seed,
             self.robot_uids,
             lambda rng: self.agent.sample_init_qpos(rng, self.robot_init_qpos_noise),
+            self.certified,
             condition or self.condition,
             self.agent.workspace,
         )
         return self.perturbed(spec, self.perturbation if perturbation is None else perturbation)
 
+    def certified(self, spec: EpisodeSpec) -> EpisodeSpec:
+        """``spec`` with the verifier's certificate for this env's robot; a
+        ``verify.VerificationError`` names its problems (see ``verify.certify``)."""
+        return certify(spec, self.catalog, self.task, self.agent.gripper.max_width)
+
     def perturbed(self, spec: EpisodeSpec, levels) -> EpisodeSpec:
-        """``spec`` at the perturbation ``levels`` (``{axis: level}`` or ``"axis:level,..."``);
-        a spec that carries a perturbation already is returned as it is stored."""
+        """``spec`` at the perturbation ``levels`` (``{axis: level}`` or ``"axis:level,..."``),
+        certified again; a spec that carries a perturbation already is returned as it is
+        stored."""
         levels = parse_levels(levels)
         if not levels or spec.perturbation:
             return spec
-        return perturb(spec, levels, self._perturbation_context())
+        return self.certified(perturb(spec, levels, self._perturbation_context()))
 
     def _perturbation_context(self) -> Context:
         names = [j.name for j in self.agent.robot.get_active_joints()]

@@ -4,10 +4,18 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass
+from itertools import combinations
 
 import numpy as np
 from mani_skill.utils.registration import register_env
 
+from instructmove_ms.assets.appearance import (
+    DISTINCT,
+    delta_e,
+    lab_of,
+    look_differs,
+    shown_color,
+)
 from instructmove_ms.assets.catalog import Catalog, Instance
 from instructmove_ms.episode import EpisodeSpec
 from instructmove_ms.family import Cue, Members, TaskSpec
@@ -25,12 +33,21 @@ from .base import InstructMoveEnv
 from .pick_category import PICK_STAGES, PICK_TEMPLATES
 
 
+def _colors_tell_apart(candidates: Sequence[Instance]) -> bool:
+    """Whether every candidate shows a colour and the rendered colours of every two are
+    ``DISTINCT`` apart."""
+    return all(shown_color(c) for c in candidates) and all(
+        delta_e(lab_of(a), lab_of(b)) >= DISTINCT for a, b in combinations(candidates, 2)
+    )
+
+
 @dataclass(frozen=True)
 class AttributeCue(Cue):
     """The instruction names the goal's value of one attribute ("the red mug", "the biggest
     apple"), drawn per episode from ``attributes``; every distractor differs from the target
-    in it (sizes by ``EXTENT_RATIO`` in the largest dimension) and colours are pairwise
-    distinct, so that any candidate can be named by its colour."""
+    in it (sizes by ``EXTENT_RATIO`` in the largest dimension, materials in how they
+    render) and the candidates' rendered colours are pairwise ``DISTINCT``, so that any
+    candidate can be named by the colour the camera shows of it."""
 
     attributes: tuple[str, ...] = ("color", "size", "shape", "material")
 
@@ -54,9 +71,21 @@ class AttributeCue(Cue):
         return cue, with_constraints(roles, "distractor", *extra)
 
     def admits(self, cue: dict, assigned: dict[str, list[Instance]]) -> None:
+        """Refuse a cast where the named difference would not show in the image: a target
+        without a word for its attribute, candidates whose rendered colours are not
+        ``DISTINCT`` (any of them may be named by colour) or a material that renders like
+        a distractor's."""
         target = assigned["target"][0]
-        if cue["attribute"] != "size" and attribute_word(target, cue["attribute"]) is None:
-            raise RoleError(f"{target.category} has no word for its {cue['attribute']}")
+        attribute = cue["attribute"]
+        if attribute != "size" and attribute_word(target, attribute) is None:
+            raise RoleError(f"{target.category} has no word for its {attribute}")
+        candidates = assigned["target"] + assigned["distractor"]
+        if not _colors_tell_apart(candidates):
+            raise RoleError(f"{target.category}: candidates whose colours do not show apart")
+        if attribute == "material" and not all(
+            look_differs(target.material, o.material) for o in assigned["distractor"]
+        ):
+            raise RoleError(f"{target.category}: materials that render alike")
 
     def phrase(
         self, rng: np.random.Generator, cue: dict, members: Members, goal: int, split: str
@@ -95,8 +124,25 @@ class AttributeCue(Cue):
         if not word or f" {word} " not in f" {text} ":
             return False
         if cue["attribute"] == "color":
-            return all(inst.colors[0] not in o.colors for o in others)
+            return _colors_tell_apart([inst, *others]) and all(
+                shown_color(inst) not in o.colors for o in others
+            )
+        if cue["attribute"] == "material":
+            return all(look_differs(inst.material, o.material) for o in others)
         return all(getattr(o, cue["attribute"]) != getattr(inst, cue["attribute"]) for o in others)
+
+    def explain(self, spec: EpisodeSpec, catalog: Catalog, k: int) -> dict:
+        """The candidate's value of the cue's attribute: its colours, material, shape or
+        largest extent (m)."""
+        inst = catalog[spec.objects[k].uuid]
+        attribute = spec.cue["attribute"]
+        values = {
+            "color": list(inst.colors),
+            "material": inst.material,
+            "shape": inst.shape,
+            "size": round(max(inst.dims), 4),
+        }
+        return {"attribute": attribute, "value": values[attribute]}
 
 
 PICK_ATTRIBUTE = TaskSpec(

@@ -13,7 +13,14 @@ from instructmove_ms.episode import EpisodeSpec
 from instructmove_ms.family import Cue, Members, TaskSpec
 from instructmove_ms.language import names, noun
 from instructmove_ms.layout import Placement
-from instructmove_ms.relations import OPPOSITE, PHRASES, RELATIONS, holds, unique_holder
+from instructmove_ms.relations import (
+    OPPOSITE,
+    PHRASES,
+    RELATIONS,
+    bearing,
+    holds,
+    unique_holder,
+)
 from instructmove_ms.sampler import Constraint, RoleSpec
 
 from .base import InstructMoveEnv
@@ -68,6 +75,18 @@ class RelationCue(Cue):
         named = names(catalog[spec.objects[k].uuid], spec.instruction)
         return named and holder is not None and spec.candidates[holder] == k
 
+    def explain(self, spec: EpisodeSpec, catalog: Catalog, k: int) -> dict:
+        """The candidate's bearing from the reference for the cue's relation and whether
+        that relation, or its opposite, holds."""
+        relation = spec.cue["relation"]
+        xy, ref = spec.objects[k].pose[:2], spec.objects[spec.cue["reference"]].pose[:2]
+        return {
+            "relation": relation,
+            **bearing(relation, xy, ref).as_dict(),
+            "holds": holds(relation, xy, ref),
+            "opposite_holds": holds(OPPOSITE[relation], xy, ref),
+        }
+
 
 PICK_SPATIAL = TaskSpec(
     env_id="PickSpatial-InstructMove",
@@ -108,9 +127,9 @@ class PickSpatialEnv(InstructMoveEnv):
     **Randomizations:**
     - the category of target and distractor, their instances, the reference object and the
       relation
-    - positions: the target holds the relation by a margin (0.06 m sideways; near < 0.16 m,
-      far > 0.26 m from the reference) and the distractor holds its opposite by the same
-      margin; yaw, template, robot joints
+    - positions: the target holds the relation and the distractor its opposite: a direction
+      relation within 45 deg of its direction, at least 0.06 m along it and within 0.35 m
+      of the reference; near < 0.16 m, far > 0.26 m; yaw, template, robot joints
     - with ``perturbation=``: lighting, table, background, cameras, robot joints, layout and
       paraphrase at levels 0-3 (``instructmove_ms.perturbation``), drawn from the seed
 

@@ -65,7 +65,7 @@ PLACE_A2B = TaskSpec(
         "place the {target} {prep} the {destination}",
         "move the {target} {prep} the {destination}",
         "pick up the {target} and put {it} {prep} the {destination}",
-        "set the {target} {prep} the {destination}",
+        "get the {target} {prep} the {destination}",
         "take the {target} and place {it} {prep} the {destination}",
         "can you put the {target} {prep} the {destination}",
         "please move the {target} {prep} the {destination}",

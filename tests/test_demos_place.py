@@ -6,6 +6,7 @@ from __future__ import annotations
 import json
 import subprocess
 import sys
+from pathlib import Path
 
 import gymnasium as gym
 import h5py
@@ -16,15 +17,29 @@ import torch
 from mani_skill.utils.wrappers import RecordEpisode
 
 from conftest import make_env
-from instructmove_ms import heldout
 from instructmove_ms.demos.place import goal_interior
 from instructmove_ms.demos.synthesis import synthesize
+from instructmove_ms.episode import EpisodeSpec
 from instructmove_ms.planning import PlanningScene
 from instructmove_ms.tasks import PLACE_STAGES
 
 TASK, ROBOT = "PlaceA2B-InstructMove", "franka"
 STEM = f"{TASK}_{ROBOT}"
 SEEDS = (1, 3)
+#: PiperX PlaceA2B scenes kept for the cases they show, by their index in the first
+#: release's stored ``seen`` set (tests/data/place_a2b_piperx_scenes.jsonl).
+SCENES = dict(
+    zip(
+        (2, 7, 22, 84, 98),
+        (
+            EpisodeSpec.from_json(line)
+            for line in (Path(__file__).parent / "data" / "place_a2b_piperx_scenes.jsonl")
+            .read_text()
+            .splitlines()
+        ),
+        strict=True,
+    )
+)
 
 
 def _outcome(env, flags, reason) -> dict:
@@ -154,10 +169,10 @@ def test_piperx_relays_a_far_goal_to_its_other_arm():
 
 
 def test_piperx_leans_its_hand_into_a_far_receptacle():
-    """Stored episode 7: a figurine goes into a storage box beyond an upright hand's reach of
+    """Scene 7: a figurine goes into a storage box beyond an upright hand's reach of
     either arm; the arm that picks it leans its hand away from its shoulder over the box
     (no relay) and lets go there."""
-    spec = heldout.load_set(TASK, "piperx", "seen")[7]
+    spec = SCENES[7]
     env = make_env(TASK, robot_uids="piperx", control_mode="pd_joint_pos")
     env.reset(options={"episode": spec})
     u = env.unwrapped
@@ -215,11 +230,11 @@ def test_an_object_resting_upside_down_in_the_receptacle_counts_as_placed():
 
 @pytest.mark.parametrize("index", [84, 98])
 def test_piperx_places_into_a_snug_receptacle_and_leaves_it_standing(index):
-    """Stored episodes 84 (a strawberry dropped into a bucket ends lying tilted on its floor)
+    """Scenes 84 (a strawberry dropped into a bucket ends lying tilted on its floor)
     and 98 (a tomato lowered deep into a pot): the fingers open just clear of the object, so
     they do not press on the walls and lift the receptacle on the way up, and the tilted
     strawberry counts as placed (its box dips below the floor, its centre does not)."""
-    spec = heldout.load_set(TASK, "piperx", "seen")[index]
+    spec = SCENES[index]
     env = make_env(TASK, robot_uids="piperx", control_mode="pd_joint_pos")
     env.reset(options={"episode": spec})
     goal = env.unwrapped.objects[spec.goal_destination]
@@ -236,12 +251,12 @@ def test_piperx_places_into_a_snug_receptacle_and_leaves_it_standing(index):
 
 @pytest.mark.parametrize("index", [2, 22])
 def test_piperx_relay_episode_fits_the_horizon(index):
-    """Stored episodes 2 and 22 need a relay (the picking arm has no release over the
+    """Scenes 2 and 22 need a relay (the picking arm has no release over the
     goal), and the pick, relay, second pick and place take more than the 500 steps at the
     default pace: the motions after the first pick hurry so that the target ends in the
     receptacle in time. In 22 the egg rolls over once set down: the second arm's grasp
     clears the turned egg's real top."""
-    spec = heldout.load_set(TASK, "piperx", "seen")[index]
+    spec = SCENES[index]
     env = make_env(TASK, robot_uids="piperx", control_mode="pd_joint_pos")
     env.reset(options={"episode": spec})
     holders = _watch_holders(env)

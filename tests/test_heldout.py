@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import json
 
 import gymnasium as gym
@@ -12,8 +13,11 @@ from conftest import verify_spec
 from instructmove_ms import heldout
 from instructmove_ms.assets import load_snapshot
 from instructmove_ms.cli import main
+from instructmove_ms.episode import SPEC_VERSION
 from instructmove_ms.splits import EVAL_SEED_BASE, EVAL_SPLITS, eval_seed
-from instructmove_ms.tasks import TASKS
+from instructmove_ms.tasks import FAMILIES, TASKS, visibility
+from instructmove_ms.tasks.visibility import hidden_objects
+from instructmove_ms.verify import certificate
 
 SETS = [
     (env_id, robot) for env_id, spec in sorted(TASKS.items()) for robot in spec.supported_robots
@@ -31,11 +35,21 @@ def test_every_set_is_complete_valid_and_regenerates(env_id, robot):
             assert spec.seed >= EVAL_SEED_BASE, "never a training seed"
             assert (spec.family, spec.robot, spec.split) == (TASKS[env_id].family, robot, split)
             assert verify_spec(spec, catalog) == []
+            assert spec.version == SPEC_VERSION
+            assert spec.certificate == certificate(spec, catalog, FAMILIES[spec.family])
+            assert hidden_objects(spec.certificate["visibility"]) == []
+            watched = [row["index"] for row in spec.certificate["visibility"]["objects"]]
+            assert watched == visibility.watched(spec)
+            assert set(spec.candidates) | set(spec.destinations) <= set(watched)
         env = gym.make(
             env_id, robot_uids=robot, split=split, obs_mode="state", render_backend="none"
         )
         for spec in specs[:3]:  # the stored specs are what the code samples for their seeds
-            assert env.unwrapped.sample_episode(spec.seed) == spec
+            sampled = env.unwrapped.sample_episode(spec.seed)
+            assert sampled == dataclasses.replace(spec, certificate=sampled.certificate)
+            assert {**sampled.certificate, "visibility": spec.certificate["visibility"]} == (
+                spec.certificate
+            )
         env.close()
 
 
@@ -57,6 +71,7 @@ def test_show_prints_a_stored_spec(capsys):
     )
     spec = json.loads(capsys.readouterr().out)
     assert spec["split"] == "unseen_instance" and spec["robot"] == "franka"
-    assert spec["seed"] == eval_seed("unseen_instance", 7)
+    stored = heldout.load_set("PickSpatial-InstructMove", "franka", "unseen_instance")[7]
+    assert spec["seed"] == stored.seed >= eval_seed("unseen_instance", 7)
     assert main(["episodes", "show", "--index", "100"]) == 2
     assert "--index 100" in capsys.readouterr().err

@@ -124,6 +124,9 @@ def _bad_inputs(tmp_path: Path, demo: Path) -> dict[str, tuple[list[str], str]]:
     unknown = json.loads(json.dumps(config))
     unknown["episodes"][0]["reset_kwargs"]["options"]["episode"]["objects"][0]["uuid"] = "x-1"
     (tmp_path / "unknown.json").write_text(json.dumps(unknown))
+    misnamed = json.loads(json.dumps(config))
+    misnamed["episodes"][0]["reset_kwargs"]["options"]["episode"]["instruction"] = "pick it up"
+    (tmp_path / "misnamed.json").write_text(json.dumps(misnamed))
     out = ["--out", str(tmp_path / "out")]
     evaluate = ["eval", "--task", TASK, "--robot", "franka"]
     convert = ["demos", "convert", "--traj"]
@@ -141,6 +144,14 @@ def _bad_inputs(tmp_path: Path, demo: Path) -> dict[str, tuple[list[str], str]]:
         "unknown uuid": (
             ["eval", "--config", str(tmp_path / "unknown.json"), "--policy", "random", *out],
             "'x-1'",
+        ),
+        "unverified episode": (
+            ["eval", "--config", str(tmp_path / "misnamed.json"), "--policy", "random", *out],
+            "config episode 0 fails the verifier: instruction 'pick it up' matches candidates []",
+        ),
+        "sheet of an unknown task": (
+            ["episodes", "sheet", "--task", "Nope", *out],
+            "unknown task 'Nope'; allowed",
         ),
         "truncated h5": ([*convert, str(truncated), *out], str(truncated)),
         "truncated h5 to lerobot": (

@@ -13,13 +13,14 @@ import numpy as np
 import torch
 
 from instructmove_ms.planning import PlanningScene
+from instructmove_ms.tasks.visibility import hidden_objects, measure
 
 from .place import SETTLE_STEPS
 from .script import MotionScript
 
 #: Failure reasons, counted per run: no IK solution for any grasp or place pose, no
 #: collision-free path, the object left the gripper, the object missed the receptacle.
-FAILURES = ("no_ik", "no_plan", "grasp_slipped", "place_missed")
+FAILURES = ("hidden", "no_ik", "no_plan", "grasp_slipped", "place_missed")
 #: Rollouts per scene at most: a grasp that slipped (in physics, though its plan was
 #: collision-free) is followed by a rollout with the next grasp plan from a fresh reset.
 GRASP_TRIALS = 3
@@ -91,10 +92,14 @@ def synthesize_scene(
     """Reset ``env`` to ``seed`` and synthesize; a rollout that fails after moving is
     discarded (``discard``, e.g. dropping a recorder's buffer) and the scene is reset and
     tried with the next grasp plan, ``GRASP_TRIALS`` rollouts at most. A failure before any
-    motion (no IK or plan) ends the scene: further variants only have fewer plans."""
+    motion (no IK or plan) ends the scene: further variants only have fewer plans. A scene
+    whose candidates or receptacles the scene cameras do not show (``tasks.visibility``)
+    is left out as ``"hidden"`` before any motion."""
     rollouts = 0
     for variant in range(GRASP_TRIALS):
         env.reset(seed=seed)
+        if variant == 0 and hidden_objects(measure(env)):
+            return SceneOutcome([], "hidden", 0, 0)
         flags, failure = synthesizer(env, variant)
         rollouts += bool(flags)
         if failure is None or not flags or variant == GRASP_TRIALS - 1:
