@@ -8,38 +8,19 @@ library (new categories, more instances) writes a new snapshot; old ones keep th
 
 from __future__ import annotations
 
-import hashlib
 import json
-from dataclasses import asdict, dataclass
+from dataclasses import dataclass
 from functools import cache
 from importlib import resources
 from pathlib import Path
 
 from ..files import write_json, write_text
-from .catalog import Catalog, Instance, generate_instance
+from .catalog import Catalog, Instance, content_hash, generate_instance
 from .generators import GENERATORS
 from .importer import data_home
 
 DEFAULT_SNAPSHOT = "default"
 SNAPSHOT_DIR = "snapshots"
-
-
-def content_hash(inst: Instance) -> str:
-    """sha256 of everything that defines the instance: its parts and stated traits."""
-    payload = {  # mesh paths depend on where the user keeps data: their content is in the uuid
-        "parts": [{k: v for k, v in asdict(p).items() if k != "mesh"} for p in inst.parts],
-        "traits": [
-            inst.colors,
-            inst.material,
-            inst.shape,
-            inst.nouns,
-            inst.is_graspable,
-            inst.is_container,
-        ],
-        "interior": None if inst.interior is None else asdict(inst.interior),
-    }
-    text = json.dumps(payload, sort_keys=True, default=lambda v: round(v, 9))
-    return hashlib.sha256(text.encode()).hexdigest()
 
 
 def build_entries(categories: list[str], per_category: int) -> list[dict]:

@@ -161,10 +161,11 @@ def _cmd_assets_build(args: argparse.Namespace) -> int:
         f"-> {path}"
     )
     if args.name == snap.DEFAULT_SNAPSHOT:  # other snapshots' colours are rendered on use
-        from instructmove_ms.assets import appearance
+        from instructmove_ms.assets.appearance import table_path
+        from instructmove_ms.assets.photometry import write_table
 
         instances = snap.load_snapshot(args.name).instances
-        print(f"rendered colours -> {appearance.write_table(instances, appearance.table_path())}")
+        print(f"rendered colours -> {write_table(instances, table_path())}")
     return 0
 
 

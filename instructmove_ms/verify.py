@@ -141,7 +141,7 @@ def certificate(spec: EpisodeSpec, catalog: Catalog, task: TaskSpec) -> dict:
                 "category": spec.objects[k].category,
                 "named": _named(catalog, spec, k),
                 "matches": spec.target >= 0 and task.cue.matches(spec, catalog, k),
-                **task.cue.explain(spec, catalog, k),
+                **(task.cue.explain(spec, catalog, k) if spec.target >= 0 else {}),
             }
             for k in spec.candidates
         ],

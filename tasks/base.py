@@ -24,7 +24,11 @@ from mani_skill.utils.structs.pose import Pose
 from mani_skill.utils.structs.types import SimConfig
 
 from instructmove_ms.agents.contacts import ContactForces
-from instructmove_ms.assets import DEFAULT_SNAPSHOT, load_snapshot
+from instructmove_ms.assets import (
+    DEFAULT_SNAPSHOT,
+    load_snapshot,
+    photometry,  # noqa: F401  (renders colours not stored)
+)
 from instructmove_ms.assets.sapien_builder import actor_builder
 from instructmove_ms.composer import compose, rephrase
 from instructmove_ms.episode import CONDITIONS, EpisodeSpec, actor_name
@@ -124,7 +128,9 @@ class InstructMoveEnv(BaseEnv):
     # Episodes -------------------------------------------------------------------------
     def reset(self, seed=None, options=None):
         """ManiSkill's reset; ``options={"episode": spec}`` rebuilds that episode exactly
-        once the verifier passes it (``verify.VerificationError`` otherwise).
+        once the verifier passes it (``verify.VerificationError`` otherwise);
+        ``"verify": False`` beside it builds a hand-made scene the verifier would refuse
+        (one object for a physics test), its certificate saying ``unverified``.
 
         ``spec`` is an :class:`EpisodeSpec`, its dict, or a list of either (one per
         sub-scene). Pass the dict form when recording so that the reset kwargs stay JSON.
@@ -138,11 +144,12 @@ class InstructMoveEnv(BaseEnv):
             self.perturbation = parse_levels(options.pop("perturbation"))
             options["reconfigure"] = True
         if "episode" in options:
-            self._requested = self._coerce_episodes(options.pop("episode"))
+            checked = options.pop("verify", True)
+            self._requested = self._coerce_episodes(options.pop("episode"), checked)
             options["reconfigure"] = True
         return super().reset(seed=seed, options=options)
 
-    def _coerce_episodes(self, value) -> list[EpisodeSpec]:
+    def _coerce_episodes(self, value, checked: bool = True) -> list[EpisodeSpec]:
         items = value if isinstance(value, list | tuple) else [value]
         specs = [v if isinstance(v, EpisodeSpec) else EpisodeSpec.from_dict(v) for v in items]
         if len(specs) != self.num_envs:
@@ -160,6 +167,8 @@ class InstructMoveEnv(BaseEnv):
                 self.catalog[obj.uuid]  # raises with the unknown uuid
         if len({len(s.objects) for s in specs}) != 1:
             raise ValueError("all sub-scenes must hold the same number of objects")
+        if not checked:  # a hand-made scene for a physics test: marked as such
+            return [dataclasses.replace(s, certificate={"unverified": True}) for s in specs]
         return [self.certified(s) for s in specs]
 
     def sample_episode(
@@ -193,7 +202,8 @@ class InstructMoveEnv(BaseEnv):
         levels = parse_levels(levels)
         if not levels or spec.perturbation:
             return spec
-        return self.certified(perturb(spec, levels, self._perturbation_context()))
+        unmeasured = dataclasses.replace(spec, certificate={})  # the scene's look changes
+        return self.certified(perturb(unmeasured, levels, self._perturbation_context()))
 
     def _perturbation_context(self) -> Context:
         names = [j.name for j in self.agent.robot.get_active_joints()]

@@ -18,27 +18,29 @@ from instructmove_ms.assets.appearance import (
     delta_e,
     lab_of,
     look_differs,
-    rendered_color,
     shown_color,
     swatch,
 )
+from instructmove_ms.assets.catalog import content_hash
 from instructmove_ms.assets.expressions import all_phrases
-from instructmove_ms.assets.snapshot import content_hash
+from instructmove_ms.assets.photometry import rendered_color, rendered_swatch
 from instructmove_ms.assets.vocab import COLORS
 from instructmove_ms.language import color_word
 
 
 def test_the_shipped_table_is_what_the_renderer_shows_for_the_whole_library():
-    """Every instance rendered afresh: its colour equals the shipped one (the table was
-    measured on this very content), and its stated colours include one the camera shows
-    or the grammar names it by none."""
-    table = _table()
+    """Every instance and swatch rendered afresh: its colour equals the shipped one (the
+    table was measured on this very content), and an instance's stated colours include one
+    the camera shows or the grammar names it by none."""
+    table = _table()["instances"]
     catalog = load_snapshot()
     assert set(table) == {inst.uuid for inst in catalog.instances}
     drift, unshown = [], []
     for inst in catalog.instances:
         assert table[inst.uuid]["hash"] == content_hash(inst)
         drift.append(delta_e(rendered_color(inst), table[inst.uuid]["lab"]))
+    for key, lab in _table()["swatches"].items():
+        drift.append(delta_e(rendered_swatch(*key.split("/")), lab))
         if shown_color(inst) is None:
             unshown.append(inst)
     assert max(drift) < 0.5, max(drift)

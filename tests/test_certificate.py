@@ -92,6 +92,8 @@ def test_the_gate_refuses_a_noun_that_names_two_objects():
         u.certified(bad)
     with pytest.raises(VerificationError, match="fails the verifier"):
         env.reset(options={"episode": bad.to_dict()})
+    env.reset(options={"episode": bad.to_dict(), "verify": False})  # a hand-made scene
+    assert u.episode.certificate == {"unverified": True}
     env.close()
 
 
@@ -151,3 +153,21 @@ def test_visibility_fails_an_object_under_the_table():
     row = next(r for r in figures["objects"] if r["index"] == k)
     assert row["pixels"] == [0]
     env.close()
+
+
+def test_a_perturbed_stored_episode_is_certified_again_without_stale_visibility():
+    spec = heldout.load_set("PickSpatial-InstructMove", "franka", "seen")[0]
+    env = gym.make(
+        "PickSpatial-InstructMove",
+        robot_uids="franka",
+        obs_mode="state",
+        render_backend="none",
+        perturbation="layout:3",
+    )
+    env.reset(options={"episode": spec})
+    moved = env.unwrapped.episode
+    env.close()
+    assert "visibility" in spec.certificate and "visibility" not in moved.certificate
+    assert moved.objects != spec.objects
+    (goal,) = [c for c in moved.certificate["candidates"] if c["matches"]]
+    assert goal["index"] == moved.target and goal["holds"] and goal["angle"] <= CONE

@@ -79,12 +79,12 @@ def test_planned_pick_lifts_target_and_touches_nothing_else(envs, robot, seed):
 
 
 def test_a_cup_on_a_saucer_is_held_around_its_rim():
-    """PickAttribute seed 7: a 0.35 kg ceramic cup on its saucer. A finger at one wall piece
+    """PickAttribute seed 168: a 0.32 kg ceramic cup on its saucer. A finger at one wall piece
     lets it turn out; the hand opens wider than the cup and closes around it."""
     env = make_env(
         robot_uids="piperx", control_mode="pd_joint_pos", env_id="PickAttribute-InstructMove"
     )
-    env.reset(seed=7)
+    env.reset(seed=168)
     u = env.unwrapped
     cup = u.catalog[u.episode.objects[u.episode.target].uuid]
     assert cup.category == "coffee_cup"

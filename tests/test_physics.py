@@ -41,7 +41,7 @@ def _object_z(env, k: int) -> float:
 
 
 def test_reach_and_lift_target(ee_env):
-    ee_env.reset(options={"episode": _spec(target=0)})
+    ee_env.reset(options={"episode": _spec(target=0), "verify": False})
     hold(ee_env, OPEN, 10)  # let objects settle
     can = ee_env.unwrapped.objects[0].pose.p[0].numpy()
     z0 = _object_z(ee_env, 0)
@@ -62,7 +62,7 @@ def test_reach_and_lift_target(ee_env):
 
 
 def test_reaching_a_distractor_is_not_reach(ee_env):
-    ee_env.reset(options={"episode": _spec(target=0)})
+    ee_env.reset(options={"episode": _spec(target=0), "verify": False})
     hold(ee_env, OPEN, 10)
     tomato = ee_env.unwrapped.objects[1].pose.p[0].numpy()
     info = move_to(ee_env, tomato + [0, 0, 0.05], OPEN, steps=80)
@@ -74,7 +74,7 @@ def test_reaching_a_distractor_is_not_reach(ee_env):
 
 def test_knocked_object_is_not_lifted(ee_env):
     """Raising an object without grasping it does not count as a lift."""
-    ee_env.reset(options={"episode": _spec(target=0)})
+    ee_env.reset(options={"episode": _spec(target=0), "verify": False})
     hold(ee_env, OPEN, 5)
     u = ee_env.unwrapped
     pose = u.objects[0].pose.raw_pose.clone()
@@ -86,7 +86,7 @@ def test_knocked_object_is_not_lifted(ee_env):
 
 
 def test_dense_reward_grows_with_progress(ee_env):
-    ee_env.reset(options={"episode": _spec(target=0)})
+    ee_env.reset(options={"episode": _spec(target=0), "verify": False})
     info = hold(ee_env, OPEN, 5)
     u = ee_env.unwrapped
     far = float(u.compute_dense_reward(None, None, info))

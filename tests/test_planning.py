@@ -40,7 +40,7 @@ def _spec() -> EpisodeSpec:
 @pytest.fixture(scope="module")
 def env():
     env = make_env(control_mode="pd_joint_pos", robot_init_qpos_noise=0.0)
-    env.reset(options={"episode": _spec()})
+    env.reset(options={"episode": _spec(), "verify": False})
     yield env
     env.close()
 
@@ -128,7 +128,7 @@ def _grasp_pose(env, k: int, sign: float) -> sapien.Pose:
 
 def test_planned_pick_lifts_target(env):
     u = env.unwrapped
-    env.reset(options={"episode": _spec()})
+    env.reset(options={"episode": _spec(), "verify": False})
     rest = np.asarray(REST[:7])
     _settle(env, rest, OPEN, 10)
     scene = PlanningScene.from_env(env)
