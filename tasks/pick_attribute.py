@@ -173,8 +173,10 @@ class PickAttributeEnv(InstructMoveEnv):
 
     **Randomizations:**
     - the category, the instances and the attribute named (among those that tell the target
-      apart); sizes differ by at least 1.3x in the largest dimension; colours are pairwise
-      distinct so that every candidate can be named
+      apart); sizes differ by at least 1.3x in the largest dimension; rendered colours are
+      pairwise at least ``appearance.DISTINCT`` apart so that every candidate can be named
+      by the colour the camera shows; a material is named only against materials that
+      render differently
     - positions (reference workspace, 0.05 m between footprints), yaw, template, robot joints
     - with ``perturbation=``: lighting, table, background, cameras, robot joints, layout and
       paraphrase at levels 0-3 (``instructmove_ms.perturbation``), drawn from the seed
