@@ -6,11 +6,11 @@ from __future__ import annotations
 from pathlib import Path
 
 import cv2
-import gymnasium as gym
 import numpy as np
 
 from .files import atomic_path
 from .heldout import load_set
+from .perturb_sheet import sheet_env
 from .video import FONT, wrap
 
 #: Tile size: the default 16:9 camera resolution, times 1.5.
@@ -40,12 +40,7 @@ def episode_sheet(
     """Write a PNG grid of the first ``count`` stored episodes of (env, robot, split), from
     the package's sets or those in ``folder``."""
     specs = load_set(env_id, robot, split, folder)[:count]
-    env = gym.make(
-        env_id,
-        robot_uids=robot,
-        obs_mode="rgb",
-        sensor_configs={"width": TILE_WIDTH, "height": TILE_HEIGHT},
-    )
+    env = sheet_env(env_id, robot, TILE_WIDTH, TILE_HEIGHT)
     try:
         camera = env.unwrapped.agent.scene_cameras[0]
         tiles = []

@@ -70,9 +70,8 @@ def generate_set(env, count: int = EPISODES_PER_SET) -> Iterator[EpisodeSpec]:
     for index in range(count * SEEDS_PER_EPISODE):
         if kept == count:
             return
-        spec = unwrapped.sample_episode(eval_seed(unwrapped.split, index))
-        env.reset(options={"episode": spec})
-        figures = measure(env)
+        env.reset(seed=eval_seed(unwrapped.split, index))
+        spec, figures = unwrapped.episode, measure(env)
         if not hidden_objects(figures):
             kept += 1
             yield dataclasses.replace(spec, certificate={**spec.certificate, "visibility": figures})

@@ -36,16 +36,19 @@ def axis_sheet(env: gym.Env, seed: int, axis: str, path: Path) -> Path:
     return path
 
 
+def sheet_env(task: str, robot: str | None, width: int, height: int) -> gym.Env:
+    """An rgb env of ``task`` whose cameras render ``width`` x ``height``, for picture
+    sheets."""
+    return gym.make(
+        task, robot_uids=robot, obs_mode="rgb", sensor_configs={"width": width, "height": height}
+    )
+
+
 def sheets(task: str, robot: str | None, seed: int, out: Path, axes=AXES) -> list[Path]:
     """One sheet per axis in ``out`` (``<axis>.png``)."""
     for axis in axes:
         parse_levels({axis: 1})  # a ValueError names an unknown axis
-    env = gym.make(
-        task,
-        robot_uids=robot,
-        obs_mode="rgb",
-        sensor_configs={"width": SHEET_WIDTH, "height": SHEET_HEIGHT},
-    )
+    env = sheet_env(task, robot, SHEET_WIDTH, SHEET_HEIGHT)
     try:
         return [axis_sheet(env, seed, axis, Path(out) / f"{axis}.png") for axis in axes]
     finally:

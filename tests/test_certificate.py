@@ -11,6 +11,7 @@ import pytest
 import torch
 
 import instructmove_ms  # noqa: F401
+from conftest import make_env
 from instructmove_ms import heldout
 from instructmove_ms.assets import load_snapshot
 from instructmove_ms.assets.expressions import SHAPE_ADJECTIVE, all_phrases
@@ -100,13 +101,7 @@ def test_the_gate_refuses_a_noun_that_names_two_objects():
 def test_spatial_relations_hold_on_settled_poses():
     """Stored PickSpatial episodes: once the objects have dropped the spawn gap and come to
     rest, the relation still picks the target alone, within its cone."""
-    env = gym.make(
-        "PickSpatial-InstructMove",
-        robot_uids="franka",
-        obs_mode="state",
-        render_backend="none",
-        control_mode="pd_joint_pos",
-    )
+    env = make_env("PickSpatial-InstructMove", control_mode="pd_joint_pos")
     u = env.unwrapped
     relations = set()
     for spec in heldout.load_set("PickSpatial-InstructMove", "franka", "seen")[:12]:
@@ -157,13 +152,7 @@ def test_visibility_fails_an_object_under_the_table():
 
 def test_a_perturbed_stored_episode_is_certified_again_without_stale_visibility():
     spec = heldout.load_set("PickSpatial-InstructMove", "franka", "seen")[0]
-    env = gym.make(
-        "PickSpatial-InstructMove",
-        robot_uids="franka",
-        obs_mode="state",
-        render_backend="none",
-        perturbation="layout:3",
-    )
+    env = make_env("PickSpatial-InstructMove", perturbation="layout:3")
     env.reset(options={"episode": spec})
     moved = env.unwrapped.episode
     env.close()

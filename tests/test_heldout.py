@@ -75,3 +75,29 @@ def test_show_prints_a_stored_spec(capsys):
     assert spec["seed"] == stored.seed >= eval_seed("unseen_instance", 7)
     assert main(["episodes", "show", "--index", "100"]) == 2
     assert "--index 100" in capsys.readouterr().err
+
+
+def test_a_contact_sheet_shows_each_episode_from_the_scene_camera(tmp_path):
+    import cv2
+    import numpy as np
+
+    from instructmove_ms.episode_sheet import TILE_HEIGHT, TILE_WIDTH, episode_sheet
+
+    path = episode_sheet("PickSpatial-InstructMove", "piperx", "seen", tmp_path / "s.png", 3, 2)
+    sheet = cv2.imread(str(path))
+    band = sheet.shape[0] // 2 - TILE_HEIGHT  # two rows: tile and caption each
+    assert sheet.shape == (2 * (TILE_HEIGHT + band), 2 * TILE_WIDTH, 3) and band > 0
+    env = gym.make(
+        "PickSpatial-InstructMove",
+        robot_uids="piperx",
+        obs_mode="rgb",
+        sensor_configs={"width": TILE_WIDTH, "height": TILE_HEIGHT},
+    )
+    spec = heldout.load_set("PickSpatial-InstructMove", "piperx", "seen")[1]
+    obs, _ = env.reset(options={"episode": spec})
+    env.close()
+    image = obs["sensor_data"]["static_camera"]["rgb"][0].numpy()[..., ::-1]
+    np.testing.assert_array_equal(sheet[:TILE_HEIGHT, TILE_WIDTH:], image)  # episode 1
+    assert (sheet[TILE_HEIGHT + band :, TILE_WIDTH:] == 255).all(), "no fourth episode"
+    caption = sheet[TILE_HEIGHT : TILE_HEIGHT + band, :TILE_WIDTH]
+    assert (caption < 128).any() and (caption == 255).mean() > 0.6, "dark text on white"
