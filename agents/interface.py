@@ -3,7 +3,7 @@ its number of arms."""
 
 from __future__ import annotations
 
-from collections.abc import Callable, Sequence
+from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import ClassVar
 
@@ -14,6 +14,7 @@ from mani_skill.utils import common
 
 from instructmove_ms.layout import Workspace
 
+from .contacts import ContactForces
 from .hardware import Gripper, JointLimits
 
 
@@ -47,11 +48,16 @@ class PolicyInterface:
         return np.concatenate([qpos[..., list(self.joints)], np.stack(grippers, axis=-1)], -1)
 
 
+#: SAPIEN collision group 2 bit shared by a robot's mounting links and the table it stands
+#: on: shapes that share a set bit of group 2 never collide.
+MOUNT_BIT = 29
+
+
 class InstructMoveAgent:
     """Mixin for ManiSkill agents used by InstructMove tasks.
 
     A subclass provides ``keyframes["rest"]``, ``arm_joint_names`` (every arm joint, arm by
-    arm), ``tcp_links`` (one TCP link per arm), ``is_grasping(actor)`` (any arm), and
+    arm), ``tcp_links`` (one TCP link per arm), ``finger_pairs`` (for ``grasping``), and
     declares its hardware: ``gripper``, ``joint_limits`` (one arm's) and ``demo_pace`` (the
     fraction of those limits planned demos move at). Its controllers keep one controller
     per gripper, in arm order, besides the arm's.
@@ -62,6 +68,9 @@ class InstructMoveAgent:
     #: The static or exterior cameras that see the whole table (visibility is measured in
     #: them; wrist cameras are left out).
     scene_cameras: ClassVar[tuple[str, ...]]
+    #: Links fixed to the robot's fixed base that stand on the table: their contacts with
+    #: it move nothing, so the solver is kept off them (``mount``).
+    mount_links: ClassVar[tuple[str, ...]] = ()
     gripper: ClassVar[Gripper]
     joint_limits: ClassVar[JointLimits]
     demo_pace: ClassVar[float]
@@ -76,10 +85,17 @@ class InstructMoveAgent:
         the direction it opens."""
         raise NotImplementedError
 
+    def mount(self, table) -> None:
+        """Let ``table`` (an actor) and the ``mount_links`` ignore each other."""
+        if self.mount_links:
+            table.set_collision_group_bit(group=2, bit_idx=MOUNT_BIT, bit=1)
+        for name in self.mount_links:
+            self.robot.links_map[name].set_collision_group_bit(group=2, bit_idx=MOUNT_BIT, bit=1)
+
     def grasping(
         self,
         actor,
-        forces: Callable,
+        forces: ContactForces,
         arms: Sequence[int] | None = None,
         min_force: float = 0.5,
         max_angle: float = 85.0,
@@ -87,12 +103,16 @@ class InstructMoveAgent:
         """(N,) true where both fingers of one of ``arms`` (default: all) push on ``actor``
         with at least ``min_force`` N, within ``max_angle`` deg of the direction they open
         (ManiSkill's Panda test), the contact forces read by ``forces(link, actor)``. A
-        finger that touches nowhere ends its arm's test (no pose is read for it)."""
+        finger that does not touch ``actor`` ends its arm's test (no force or pose is read
+        for it)."""
         pairs = self.finger_pairs if arms is None else [self.finger_pairs[k] for k in arms]
         flags = []
         for pair in pairs:
             flag = None
             for link, sign in pair:
+                if not forces.touching(link, actor):
+                    flag = torch.zeros(self.scene.num_envs, dtype=torch.bool, device=self.device)
+                    break
                 force = forces(link, actor)
                 pushed = torch.linalg.norm(force, dim=1) >= min_force
                 if not bool(pushed.any()):
@@ -103,21 +123,15 @@ class InstructMoveAgent:
                 finger = pushed & (angle <= max_angle)
                 flag = finger if flag is None else flag & finger
             flags.append(flag)
-        return torch.stack(flags).any(dim=0)
+        return flags[0] if len(flags) == 1 else torch.stack(flags).any(dim=0)
 
     def is_grasping(self, actor, min_force: float = 0.5, max_angle: float = 85.0) -> torch.Tensor:
         """(N,) true where any arm grasps ``actor``."""
-        return self.grasping(
-            actor, self.scene.get_pairwise_contact_forces, None, min_force, max_angle
-        )
+        return self.grasping(actor, ContactForces(self.scene), None, min_force, max_angle)
 
     def tcp_positions(self) -> torch.Tensor:
         """TCP positions of every arm, (N, arms, 3)."""
         return torch.stack([link.pose.p for link in self.tcp_links], dim=1)
-
-    def tcp_state(self) -> torch.Tensor:
-        """TCP poses of every arm, flattened: (N, arms * 7)."""
-        return torch.cat([link.pose.raw_pose for link in self.tcp_links], dim=-1)
 
     def arm_joints(self, arm: int) -> list[str]:
         """The joints of arm ``arm`` (0 for a single arm; the PiperX's 0 left, 1 right)."""

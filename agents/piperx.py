@@ -175,6 +175,7 @@ class PiperX(InstructMoveAgent, BaseAgent):
     urdf_config = _finger_materials(sides)
     keyframes = dict(rest=Keyframe(qpos=rest_qpos(sides), pose=sapien.Pose()))
     scene_cameras = ("static_camera",)
+    mount_links = ("left_base_link", "right_base_link")
 
     #: The action value is the width itself; the fingers slide along link6's (and the
     #: TCP's) x axis.

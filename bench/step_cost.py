@@ -8,14 +8,17 @@ state observations and each reward mode, it times in the same run:
 - ``step``: the whole ``env.step(action)`` (physics, ``evaluate``, observation, reward);
 
 and prints steps/s, the ratio step/physics and steps/s against PickCube-v1. Then the cost as
-the scene grows: steps/s and reconfigure time with 1, 3 and 5 distractors (PickCategory's
-maximum), and the slope per object. Random actions (a fixed seed), ``--steps`` per
-measurement after a warm-up; medians of ``--repeats``.
+the scene grows (dense reward): steps/s, step/physics and reconfigure time of PickCategory
+with 1, 3 and 5 distractors (its maximum), and of hand-made scenes of 3, 6 and 10 small
+objects on a grid (beyond any family's count, built with ``"verify": False``), with the
+slope per object and the 10-object step against the 3-object one. Random actions (a fixed
+seed), ``--steps`` per measurement after a warm-up; medians of ``--repeats``.
 """
 
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import statistics
 import time
 
@@ -24,11 +27,13 @@ import numpy as np
 import torch
 
 import instructmove_ms  # noqa: F401
+from instructmove_ms.episode import EpisodeSpec, ObjectSpec
 
 ENV_ID = "PickCategory-InstructMove"
 ROBOTS = ("franka", "piperx")
 REWARDS = ("dense", "sparse")
 WARMUP = 10
+GRID_SIZES = (3, 6, 10)
 
 
 def _make(env_id: str, robot: str | None, reward: str, **kwargs):
@@ -74,19 +79,60 @@ def measure(env_id: str, robot: str | None, reward: str, steps: int, repeats: in
     return {"physics": statistics.median(physics), "step": statistics.median(full)}
 
 
-def scaling(robot: str, steps: int, repeats: int) -> list[tuple[int, float, float]]:
-    """(objects, seconds per step, seconds per reconfiguring reset) per distractor count."""
+def _grid_scenes(env, sizes: tuple[int, ...]) -> dict[int, EpisodeSpec]:
+    """Hand-made scenes of ``sizes`` objects: the first small (at most 0.1 m wide) distinct
+    objects of PickCategory's episodes, resting as sampled, on a grid of 0.15 m."""
+    u = env.unwrapped
+    base = u.sample_episode(0)
+    pool: list[ObjectSpec] = []
+    seed = 0
+    while len(pool) < max(sizes):
+        for obj in u.sample_episode(seed).objects:
+            lo, hi = u.catalog[obj.uuid].bounds
+            if obj.uuid not in {o.uuid for o in pool} and max(hi[:2] - lo[:2]) <= 0.1:
+                pool.append(obj)
+        seed += 1
+    scenes = {}
+    for size in sizes:
+        objects = tuple(
+            dataclasses.replace(
+                obj,
+                role="target" if i == 0 else "distractor",
+                pose=(0.33 + 0.15 * (i // 5), -0.3 + 0.15 * (i % 5), *obj.pose[2:]),
+            )
+            for i, obj in enumerate(pool[:size])
+        )
+        scenes[size] = dataclasses.replace(base, objects=objects, target=0, candidates=(0,))
+    return scenes
+
+
+def _grown(env, resets: list[dict], steps: int) -> tuple[float, float, float]:
+    """Median seconds per step, per physics step and per reconfiguring reset, one round
+    per reset's keyword arguments in ``resets``."""
+    reconfigure, full, physics = [], [], []
+    for kwargs in resets:
+        start = time.perf_counter()
+        env.reset(**kwargs)
+        reconfigure.append(time.perf_counter() - start)
+        full.append(_time_steps(env, steps, physics_only=False))
+        physics.append(_time_steps(env, steps, physics_only=True))
+    return statistics.median(full), statistics.median(physics), statistics.median(reconfigure)
+
+
+def scaling(robot: str, steps: int, repeats: int) -> list[tuple[str, int, float, float, float]]:
+    """(scene kind, objects, s per step, s per physics step, s per reconfiguring reset) for
+    PickCategory with 1, 3 and 5 distractors, then grid scenes of 3, 6 and 10 objects."""
     rows = []
     for distractors in (1, 3, 5):
         env = _make(ENV_ID, robot, "dense", num_distractors=distractors)
-        resets, per_step = [], []
-        for k in range(repeats):
-            start = time.perf_counter()
-            env.reset(seed=k)
-            resets.append(time.perf_counter() - start)
-            per_step.append(_time_steps(env, steps, physics_only=False))
+        timed = _grown(env, [{"seed": k} for k in range(repeats)], steps)
         env.close()
-        rows.append((distractors + 1, statistics.median(per_step), statistics.median(resets)))
+        rows.append(("family", distractors + 1, *timed))
+    env = _make(ENV_ID, robot, "dense")
+    for size, spec in _grid_scenes(env, GRID_SIZES).items():
+        options = {"episode": spec.to_dict(), "verify": False}
+        rows.append(("grid", size, *_grown(env, [{"options": options}] * repeats, steps)))
+    env.close()
     return rows
 
 
@@ -115,18 +161,22 @@ def main() -> None:
     for reward in REWARDS:
         ratio = rows[("franka", reward)]["step"] / rows[("piperx", reward)]["step"]
         print(f"PiperX steps/s / Franka steps/s ({reward}): {ratio:.2f}x")
-    print("\nscene size (dense reward): objects, steps/s, reconfigure s")
+    print("\nscene size (dense reward): objects, steps/s, step/physics, reconfigure s")
     for robot in ROBOTS:
         grown = scaling(robot, args.steps, args.repeats)
-        for objects, per_step, reset in grown:
-            print(f"{robot:7s} {objects:2d} objects {1 / per_step:7.0f} steps/s  {reset:6.2f} s")
-        (n0, s0, _), (n1, s1, _) = grown[0], grown[-1]
-        slope = (s1 - s0) / (n1 - n0)
-        print(
-            f"{robot:7s} per object: +{slope * 1e3:.3f} ms/step ({slope / s0:.1%} of the "
-            f"{n0}-object step); {n1} objects cost {s1 / grown[1][1]:.2f}x "
-            f"the step of {grown[1][0]}"
-        )
+        for kind, objects, per_step, physics, reset in grown:
+            print(
+                f"{robot:7s} {kind:6s} {objects:2d} objects {1 / per_step:7.0f} steps/s "
+                f"{per_step / physics:5.2f}x {reset:6.2f} s"
+            )
+        for kind in ("family", "grid"):
+            (n0, s0), (n1, s1) = [(r[1], r[2]) for r in grown if r[0] == kind][::2]
+            slope = (s1 - s0) / (n1 - n0)
+            print(
+                f"{robot:7s} {kind:6s} per object: +{slope * 1e3:.3f} ms/step "
+                f"({slope / s0:.1%} of the {n0}-object step); {n1} objects cost "
+                f"{s1 / s0:.2f}x the step of {n0}"
+            )
 
 
 if __name__ == "__main__":

@@ -76,9 +76,10 @@ class StageSchema:
         """The per-step flags recorded with a demo: every stage, then ``success``."""
         return (*self.names, "success")
 
-    def score(self, flags: Sequence[Any]) -> Any:
-        """The stage score of ``flags`` (one value or tensor per stage, in order)."""
-        return (1.0 / len(self.names)) * sum(flags)
+    def score(self, flags: Any) -> Any:
+        """The stage score of ``flags`` (..., stages): an array or tensor of the stage
+        flags, in order, on its last axis."""
+        return flags.sum(-1) * (1.0 / len(self.names))
 
 
 class Cue:

@@ -10,7 +10,6 @@ checked), ``_goal_conditions`` (its stages after lift), ``_goal_reward`` and
 from __future__ import annotations
 
 import dataclasses
-from dataclasses import dataclass, field
 from typing import Any, ClassVar
 
 import numpy as np
@@ -23,7 +22,6 @@ from mani_skill.utils.structs.actor import Actor
 from mani_skill.utils.structs.pose import Pose
 from mani_skill.utils.structs.types import SimConfig
 
-from instructmove_ms.agents.contacts import ContactForces
 from instructmove_ms.assets import (
     DEFAULT_SNAPSHOT,
     load_snapshot,
@@ -38,21 +36,10 @@ from instructmove_ms.splits import SPLITS
 from instructmove_ms.validation import check_choice, check_range
 from instructmove_ms.verify import certify, verify
 
+from .measure import Measured, SceneReader
 from .scene import build_room
 from .scenery import backdrop, light, move_cameras
-from .stages import StageTracker, box_distance
-
-
-@dataclass
-class Measured:
-    """What one step of the scene shows, read once and shared by ``evaluate``, the reward
-    and the observation: the objects' positions and orientations (N, K, 3 / 4), the
-    step's contact forces and the grasp flags checked so far (object index -> (N,))."""
-
-    pos: torch.Tensor
-    quat: torch.Tensor
-    contacts: ContactForces
-    grasped: dict[int, torch.Tensor] = field(default_factory=dict)
+from .stages import StageTracker, box_distance, select
 
 
 class InstructMoveEnv(BaseEnv):
@@ -240,6 +227,7 @@ class InstructMoveEnv(BaseEnv):
         else:
             self.episodes = [self.sample_episode(int(s)) for s in self._episode_seed]
         floor = build_room(self.scene, self._perturbed_values("table"))
+        self.agent.mount(self.scene.actors["table"])
         backdrop(self.scene, self._perturbed_values("background"), floor)
         self.objects = []
         boxes = []
@@ -262,8 +250,19 @@ class InstructMoveEnv(BaseEnv):
         boxes_t = torch.tensor(np.asarray(boxes), dtype=torch.float32, device=self.device)
         self._box_center, self._box_half = boxes_t[..., :3], boxes_t[..., 3:]
         self._target = torch.tensor([ep.target for ep in self.episodes], device=self.device)
+        self._no_target = self._target < 0
+        self._target_column = self._target.clamp(min=0)[:, None]  # (N, 1) for gathers
+        self._target_pair = self._target_column[:, :, None].expand(-1, 2, 1)
+        self._has_target = ~self._no_target[:, None]
+        targets = sorted({max(ep.target, 0) for ep in self.episodes})
+        self._target_rows = [  # each object that is a target: the sub-scenes where it is
+            (k, None if len(targets) == 1 else self._target_column[:, 0] == k) for k in targets
+        ]
+        self._half_flat = self._box_half.flatten(1)
         self._z0 = torch.zeros((self.num_envs, len(self.objects)), device=self.device)
         self._stages = StageTracker(self.task.stages.names, self.num_envs, self.device)
+        fingers = [link for pair in self.agent.finger_pairs for link, _ in pair]
+        self._reader = SceneReader(self.objects, self.agent.tcp_links, fingers)
 
     def _perturbed_values(self, axis: str) -> list[dict | None]:
         """Each sub-scene's drawn values of a perturbation axis (None where not perturbed)."""
@@ -303,16 +302,16 @@ class InstructMoveEnv(BaseEnv):
     def _after_control_step(self) -> None:
         self._now = None  # the scene moved: the next reader measures it again
 
-    def _measure(self) -> Measured:
-        """The objects' poses of this step, and its contacts for grasp checks."""
-        poses = torch.stack([obj.pose.raw_pose for obj in self.objects], dim=1)
-        self._now = Measured(poses[..., :3], poses[..., 3:], ContactForces(self.scene))
+    def _measured(self) -> Measured:
+        """This step's measurements, read once (``evaluate`` reads them; the reward and
+        the observation that follow it in a step share them)."""
+        if self._now is None:
+            self._now = self._reader.measure()
         return self._now
 
-    def _measured(self) -> Measured:
-        """This step's measurements (``evaluate`` takes them; the reward and the
-        observation that follow it in a step share them)."""
-        return self._now if self._now is not None else self._measure()
+    def _of_target(self, values: torch.Tensor) -> torch.Tensor:
+        """Each sub-scene's entry of ``values`` (N, K, ...) for its target object."""
+        return select(values, self._target_column)
 
     def _grasp(self, now: Measured, k: int) -> torch.Tensor:
         """(N,) whether the robot grasps object ``k``, checked once per step."""
@@ -323,27 +322,34 @@ class InstructMoveEnv(BaseEnv):
     def _grasped(self, now: Measured, mask: torch.Tensor) -> torch.Tensor:
         """(N, K) grasp flags, checked only for objects where ``mask`` has any row set."""
         grasped = torch.zeros_like(mask)
+        if not bool(mask.any()):
+            return grasped
         for k in torch.nonzero(mask.any(dim=0)).flatten().tolist():
             grasped[:, k] = self._grasp(now, k)
         return grasped
+
+    def _target_grasped(self, now: Measured) -> torch.Tensor:
+        """(N,) whether each sub-scene's target is grasped."""
+        flags = [
+            self._grasp(now, k) if rows is None else self._grasp(now, k) & rows
+            for k, rows in self._target_rows
+        ]
+        return flags[0] if len(flags) == 1 else torch.stack(flags).any(dim=0)
 
     def _watched(self, raised: torch.Tensor) -> torch.Tensor:
         """(N, K) objects whose grasp is checked this step: the raised ones."""
         return raised
 
-    def _goal_conditions(
-        self, pos: torch.Tensor, quat: torch.Tensor, grasped: torch.Tensor
-    ) -> list[torch.Tensor]:
+    def _goal_conditions(self, now: Measured, grasped: torch.Tensor) -> list[torch.Tensor]:
         """(N,) conditions of the family's stages after reach and lift (none here), from
-        the objects' poses and grasp flags of this step."""
+        this step's measurements and the objects' grasp flags (N, K)."""
         return []
 
     def _goal_reward(
         self,
         reward: torch.Tensor,
         info: dict,
-        pos: torch.Tensor,
-        quat: torch.Tensor,
+        now: Measured,
         grasped: torch.Tensor,
         lifted: torch.Tensor,
     ) -> torch.Tensor:
@@ -353,49 +359,51 @@ class InstructMoveEnv(BaseEnv):
 
     def evaluate(self) -> dict:
         th, schema = self.task.thresholds, self.task.stages
-        now = self._measure()
-        pos, quat = now.pos, now.quat
-        dist = box_distance(
-            self.agent.tcp_positions(), pos, quat, self._box_center, self._box_half
-        ).amin(dim=1)
+        self._now = None
+        now = self._measured()
+        pos = now.pos
+        dist = box_distance(now.tcp[..., :3], pos, now.quat, self._box_center, self._box_half).amin(
+            dim=1
+        )
         rise = pos[..., 2] - self._z0
         raised = rise > th.lift
         grasped = self._grasped(now, self._watched(raised))
-        rows = torch.arange(self.num_envs, device=self.device)
-        has, t = self._target >= 0, self._target.clamp(min=0)
         within, lifted = dist < th.reach, raised & grasped
-        conditions = [has & within[rows, t], has & lifted[rows, t]]
-        conditions += self._goal_conditions(pos, quat, grasped)
+        # reach and lift of the target, then the family's goal stages: (N, stages)
+        events = torch.stack((within, lifted), dim=1)
+        conditions = events.gather(2, self._target_pair).squeeze(2) & self._has_target
+        goal = self._goal_conditions(now, grasped)
+        if goal:
+            conditions = torch.cat((conditions, torch.stack(goal, dim=1)), dim=1)
         stages = self._stages
-        stages.update(dist, within, lifted, rise, conditions)
-        f = {k: v.clone() for k, v in stages.flags.items()}
-        reach, lift = schema.names[:2]
+        stages.update(dist, events, rise, conditions)
+        f, names, first = stages.flags, schema.names, stages.first
+        success = names.index(schema.success)
+        seen = first >= 0
         info = {
-            "reach": f[reach],
-            "lift": f[lift],
-            "reached_object": stages.reached_object.clone(),
-            "lifted_object": stages.lifted_object.clone(),
-            "any_reach": stages.reached_object >= 0,
-            "any_lift": stages.lifted_object >= 0,
-            "target_distance": torch.where(
-                has, dist[rows, t], torch.full_like(dist[:, 0], torch.inf)
-            ),
+            "reach": f[:, 0],
+            "lift": f[:, 1],
+            "reached_object": first[:, 0],
+            "lifted_object": first[:, 1],
+            "any_reach": seen[:, 0],
+            "any_lift": seen[:, 1],
+            "target_distance": self._of_target(dist).masked_fill(self._no_target, torch.inf),
         }
-        info.update({k: v for k, v in f.items() if k not in info})
+        info.update({name: f[:, i] for i, name in enumerate(names) if name not in info})
         info.update(
-            success=f[schema.success],
+            success=f[:, success],
             # the success stage's own condition at this step, not latched: success at the end
-            success_now=conditions[schema.names.index(schema.success)],
-            stage_score=schema.score([v.float() for v in f.values()]),
+            success_now=conditions[:, success],
+            stage_score=schema.score(f),
         )
         return info
 
     def _get_obs_extra(self, info: dict) -> dict:
-        obs = dict(tcp_pose=self.agent.tcp_state())
+        now = self._measured()
+        obs = dict(tcp_pose=now.tcp.flatten(1))
         if "state" in self.obs_mode:
-            now = self._measured()
-            obs["obj_pose"] = torch.cat([now.pos, now.quat], dim=-1).flatten(1)
-            obs["obj_half_size"] = self._box_half.flatten(1)
+            obs["obj_pose"] = now.objects.flatten(1)
+            obs["obj_half_size"] = self._half_flat
         return obs
 
     # Rewards --------------------------------------------------------------------------
@@ -403,20 +411,15 @@ class InstructMoveEnv(BaseEnv):
         """Staged: approach the target (1), grasp it (1), raise it (2), then the family's
         goal terms (``_goal_reward``). Success gives the maximum; episodes without a target
         get 0."""
-        rows = torch.arange(self.num_envs, device=self.device)
-        t = self._target.clamp(min=0)
         now = self._measured()
-        pos, quat = now.pos, now.quat
-        rise = pos[rows, t, 2] - self._z0[rows, t]
-        grasped = torch.zeros(self.num_envs, dtype=torch.bool, device=self.device)
-        for k in torch.unique(t).tolist():
-            grasped |= (t == k) & self._grasp(now, k)
-        reward = 1.0 - torch.tanh(10.0 * info["target_distance"].clamp(max=10.0))
+        rise = self._of_target(now.pos[..., 2] - self._z0)
+        grasped = self._target_grasped(now)
+        reward = 1.0 - torch.tanh(10.0 * info["target_distance"])  # 0 at an infinite distance
         lifted = (rise / self.task.thresholds.lift).clamp(0, 1)
         reward = reward + grasped.float() * (1.0 + 2.0 * lifted)
-        reward = self._goal_reward(reward, info, pos, quat, grasped, lifted)
-        reward = torch.where(self._target >= 0, reward, torch.zeros_like(reward))
-        return torch.where(info["success"], torch.full_like(reward, self._max_reward), reward)
+        reward = self._goal_reward(reward, info, now, grasped, lifted)
+        reward = reward.masked_fill(self._no_target, 0.0)
+        return reward.masked_fill(info["success"], self._max_reward)
 
     @property
     def _max_reward(self) -> float:

@@ -3,18 +3,15 @@
 from __future__ import annotations
 
 import torch
-from mani_skill.utils.geometry.rotation_conversions import (
-    quaternion_apply,
-    quaternion_invert,
-    quaternion_multiply,
-)
 from mani_skill.utils.registration import register_env
 
 from instructmove_ms.family import StageSchema, TaskSpec
 from instructmove_ms.sampler import EACH_OTHER, Constraint, RoleSpec
 
 from .base import InstructMoveEnv
+from .measure import Measured
 from .pick_category import CategoryCue
+from .stages import rotate, select
 
 #: S_pnp = 0.25 (reach_pick + lift_pick + reach_place + place); success is the place.
 PLACE_STAGES = StageSchema(("reach_pick", "lift_pick", "reach_place", "place"), success="place")
@@ -119,62 +116,53 @@ class PlaceA2BEnv(InstructMoveEnv):
             regions.append([*region.center, *region.half] if region else [0.0] * 5)
         regions_t = torch.tensor(regions, dtype=torch.float32, device=self.device)
         self._goal_center, self._goal_half = regions_t[:, :3], regions_t[:, 3:]
+        self._goal_column = self._goal.clamp(min=0)[:, None]
+        self._target_mask = torch.zeros_like(self._z0, dtype=torch.bool).scatter_(
+            1, self._target_column, True
+        )
+        self._up = torch.tensor([0.0, 0.0, 1.0], device=self.device)
 
-    def _goal_frame(self, points: torch.Tensor, pos: torch.Tensor, quat: torch.Tensor):
-        """``points`` (N, 3) in the goal receptacle's frame, relative to its floor centre;
-        ``pos``, ``quat`` are the objects' poses of this step."""
-        rows = torch.arange(self.num_envs, device=self.device)
-        g = self._goal.clamp(min=0)
-        rel = points - pos[rows, g]
-        return quaternion_apply(quaternion_invert(quat[rows, g]), rel) - self._goal_center
+    def _goal_frame(self, points: torch.Tensor, now: Measured) -> torch.Tensor:
+        """``points`` (N, 3) in the goal receptacle's frame, relative to its floor centre."""
+        rel = points - select(now.pos, self._goal_column)
+        return rotate(select(now.quat, self._goal_column), rel, inverse=True) - self._goal_center
 
-    def _target_in_goal(self, pos: torch.Tensor, quat: torch.Tensor):
+    def _target_in_goal(self, now: Measured) -> tuple[torch.Tensor, torch.Tensor]:
         """The centre (N, 3) and the lowest point's height (N,) of the target's box in the
-        goal receptacle's frame, in any orientation (a cup on its side, an egg upside down)."""
-        rows = torch.arange(self.num_envs, device=self.device)
-        t, g = self._target.clamp(min=0), self._goal.clamp(min=0)
-        centre = pos[rows, t] + quaternion_apply(quat[rows, t], self._box_center[rows, t])
-        local = self._goal_frame(centre, pos, quat)
-        turn = quaternion_multiply(quaternion_invert(quat[rows, g]), quat[rows, t])
-        axes = torch.diag_embed(self._box_half[rows, t])  # (N, 3, 3): half extents as rows
-        depth = sum(quaternion_apply(turn, axes[:, j])[:, 2].abs() for j in range(3))
+        goal receptacle's frame, in any orientation (a cup on its side, an egg upside down):
+        the box reaches below its centre by its half extents along the goal's up axis."""
+        turn = self._of_target(now.quat)
+        centre = self._of_target(now.pos) + rotate(turn, self._of_target(self._box_center))
+        local = self._goal_frame(centre, now)
+        up = rotate(select(now.quat, self._goal_column), self._up.expand_as(centre))
+        depth = (rotate(turn, up, inverse=True).abs() * self._of_target(self._box_half)).sum(1)
         return local, local[:, 2] - depth
 
     def _watched(self, raised: torch.Tensor) -> torch.Tensor:
         """The raised objects and the target: release is part of placing."""
-        watch = raised.clone()
-        watch[torch.arange(self.num_envs, device=self.device), self._target.clamp(min=0)] = True
-        return watch
+        return raised | self._target_mask
 
-    def _goal_conditions(
-        self, pos: torch.Tensor, quat: torch.Tensor, grasped: torch.Tensor
-    ) -> list[torch.Tensor]:
+    def _goal_conditions(self, now: Measured, grasped: torch.Tensor) -> list[torch.Tensor]:
         """reach_place: the target's box centre is over the goal interior; place: it rests
         on the floor inside (its lowest point within ``place_height``, its centre above the
         floor), slower than ``place_speed``, released."""
-        rows = torch.arange(self.num_envs, device=self.device)
-        t = self._target.clamp(min=0)
-        local, bottom = self._target_in_goal(pos, quat)
+        local, bottom = self._target_in_goal(now)
         over = (self._goal >= 0) & (local[:, :2].abs() <= self._goal_half).all(dim=1)
-        speed = torch.stack([o.linear_velocity for o in self.objects], dim=1)[rows, t]
         th = self.task.thresholds
         # a tilted round object's box dips below the floor: its centre must stay above it
         resting = (local[:, 2] > -0.01) & (bottom < th.place_height)
-        still = torch.linalg.norm(speed, dim=1) < th.place_speed
-        return [over, over & resting & still & ~grasped[rows, t]]
+        still = torch.linalg.norm(self._of_target(now.velocity), dim=1) < th.place_speed
+        return [over, over & resting & still & ~self._of_target(grasped)]
 
     def _goal_reward(
         self,
         reward: torch.Tensor,
         info: dict,
-        pos: torch.Tensor,
-        quat: torch.Tensor,
+        now: Measured,
         grasped: torch.Tensor,
         lifted: torch.Tensor,
     ) -> torch.Tensor:
         """Carry the lifted target over the goal receptacle (2), release it there (1)."""
-        t = self._target.clamp(min=0)
-        rows = torch.arange(self.num_envs, device=self.device)
-        away = torch.linalg.norm(self._goal_frame(pos[rows, t], pos, quat)[:, :2], dim=1)
+        away = torch.linalg.norm(self._goal_frame(self._of_target(now.pos), now)[:, :2], dim=1)
         reward = reward + lifted * grasped.float() * 2.0 * (1.0 - torch.tanh(5.0 * away))
         return reward + info["reach_place"].float() * (~grasped).float()

@@ -1,9 +1,32 @@
-"""Batched stage metrics: distances to object geometry and latched stage flags."""
+"""Batched stage metrics: rotations, distances to object geometry and latched stage flags.
+
+Every function here is a handful of batched tensor operations, the same on the CPU and the
+GPU backend, whatever the number of sub-scenes and objects: a step's scoring runs them once.
+"""
 
 from __future__ import annotations
 
 import torch
-from mani_skill.utils.geometry.rotation_conversions import quaternion_apply, quaternion_invert
+
+
+def rotate(quat: torch.Tensor, v: torch.Tensor, inverse: bool = False) -> torch.Tensor:
+    """``v`` (..., 3) turned by the unit quaternions ``quat`` (..., 4, wxyz; broadcast
+    against ``v``), or by their inverse: v + 2 w c + 2 u x c with c = u x v (the conjugate
+    negates u)."""
+    w, u = quat[..., :1], quat[..., 1:]
+    if inverse:
+        c = torch.linalg.cross(v, u)
+        return torch.addcmul(v, w, c, value=2.0).sub_(torch.linalg.cross(u, c), alpha=2.0)
+    c = torch.linalg.cross(u, v)
+    return torch.addcmul(v, w, c, value=2.0).add_(torch.linalg.cross(u, c), alpha=2.0)
+
+
+def select(values: torch.Tensor, column: torch.Tensor) -> torch.Tensor:
+    """Each row's entry of ``values`` (N, K, ...) at the index in ``column`` (N, 1)."""
+    trailing = values.shape[2:]
+    if trailing:
+        column = column.view(-1, 1, *(1 for _ in trailing)).expand(-1, 1, *trailing)
+    return values.gather(1, column).squeeze(1)
 
 
 def box_distance(
@@ -19,17 +42,15 @@ def box_distance(
     ``center`` and ``half`` extents (N, K, 3) in the object's frame.
     """
     rel = points[:, :, None, :] - pos[:, None]
-    inv = quaternion_invert(quat)[:, None].expand(*rel.shape[:-1], 4)
-    local = quaternion_apply(inv, rel) - center[:, None]
-    outside = (local.abs() - half[:, None]).clamp(min=0.0)
-    return torch.linalg.norm(outside, dim=-1)
+    local = rotate(quat[:, None], rel, inverse=True).sub_(center[:, None])
+    return local.abs_().sub_(half[:, None]).clamp_(min=0.0).norm(dim=-1)
 
 
 def first_index(mask: torch.Tensor, score: torch.Tensor) -> torch.Tensor:
-    """Per row, the index of the lowest ``score`` among ``mask``-ed entries, -1 if none."""
-    masked = torch.where(mask, score, torch.full_like(score, torch.inf))
-    idx = masked.argmin(dim=1)
-    return torch.where(mask.any(dim=1), idx, torch.full_like(idx, -1))
+    """Along the last axis, the index of the lowest ``score`` among ``mask``-ed entries, -1
+    if none."""
+    lowest, idx = torch.where(mask, score, torch.inf).min(dim=-1)
+    return idx.masked_fill_(lowest == torch.inf, -1)
 
 
 def latch_first(current: torch.Tensor, candidate: torch.Tensor) -> torch.Tensor:
@@ -40,32 +61,44 @@ def latch_first(current: torch.Tensor, candidate: torch.Tensor) -> torch.Tensor:
 class StageTracker:
     """Latched stage flags of N sub-scenes, named by a family's ``StageSchema``: each stage
     counts once its condition holds after the one before it has. Also latches the first
-    object the robot reached and lifted (the target or a distractor: grounding errors)."""
+    object the robot reached and lifted (the target or a distractor: grounding errors).
+
+    Each update makes new tensors (it never writes into the old ones), so what a step
+    reported stays as it was after later steps and resets."""
 
     def __init__(self, names: tuple[str, ...], num_envs: int, device) -> None:
-        self.flags = {s: torch.zeros(num_envs, dtype=torch.bool, device=device) for s in names}
-        self.reached_object = torch.full((num_envs,), -1, dtype=torch.long, device=device)
-        self.lifted_object = torch.full_like(self.reached_object, -1)
+        self.names = names
+        #: (N, stages) latched flags, in the schema's order
+        self.flags = torch.zeros((num_envs, len(names)), dtype=torch.bool, device=device)
+        #: (N, 2) the first object reached and the first lifted, -1 before there is one
+        self.first = torch.full((num_envs, 2), -1, dtype=torch.long, device=device)
+
+    @property
+    def reached_object(self) -> torch.Tensor:
+        return self.first[:, 0]
+
+    @property
+    def lifted_object(self) -> torch.Tensor:
+        return self.first[:, 1]
 
     def reset(self, env_idx: torch.Tensor) -> None:
-        for flag in self.flags.values():
-            flag[env_idx] = False
-        self.reached_object[env_idx] = -1
-        self.lifted_object[env_idx] = -1
+        self.flags = self.flags.index_fill(0, env_idx, False)
+        self.first = self.first.index_fill(0, env_idx, -1)
 
     def update(
         self,
         dist: torch.Tensor,
-        within: torch.Tensor,
-        lifted: torch.Tensor,
+        events: torch.Tensor,
         rise: torch.Tensor,
-        conditions: list[torch.Tensor],
+        conditions: torch.Tensor,
     ) -> None:
-        """``dist``, ``within``, ``lifted``, ``rise`` (N, K) per object; ``conditions`` (N,)
-        per stage, in the schema's order."""
-        self.reached_object = latch_first(self.reached_object, first_index(within, dist))
-        self.lifted_object = latch_first(self.lifted_object, first_index(lifted, -rise))
-        previous = None
-        for flag, condition in zip(self.flags.values(), conditions, strict=True):
-            flag |= condition if previous is None else condition & previous
-            previous = flag
+        """``dist`` and ``rise`` (N, K) per object; ``events`` (N, 2, K) whether each
+        object is within reach and whether it is lifted; ``conditions`` (N, stages) per
+        stage, in the schema's order. The first object reached is the nearest within reach,
+        the first lifted the highest of those lifted.
+
+        A stage is set when it was, or when its condition holds and the stage before it is
+        set after this update. Since a set stage has every stage before it set, that is
+        the running AND over the stages of (was set or holds now)."""
+        self.first = latch_first(self.first, first_index(events, torch.stack((dist, -rise), 1)))
+        self.flags = (self.flags | conditions).cummin(dim=1).values

@@ -17,6 +17,7 @@ import torch
 from mani_skill.utils.wrappers import RecordEpisode
 
 from conftest import make_env
+from instructmove_ms.agents.contacts import ContactForces
 from instructmove_ms.demos.place import goal_interior
 from instructmove_ms.demos.synthesis import synthesize
 from instructmove_ms.episode import EpisodeSpec
@@ -78,10 +79,7 @@ def _watch_holders(env) -> list[list[bool]]:
     def watch(action):
         out = step(action)
         holders.append(
-            [
-                bool(u.agent.grasping(target, u.scene.get_pairwise_contact_forces, [k])[0])
-                for k in (0, 1)
-            ]
+            [bool(u.agent.grasping(target, ContactForces(u.scene), [k])[0]) for k in (0, 1)]
         )
         return out
 
@@ -182,7 +180,7 @@ def test_piperx_leans_its_hand_into_a_far_receptacle():
     def watch(action):
         _, _, _, _, info = step(action)
         for arm, link in enumerate(u.agent.tcp_links):
-            if bool(u.agent.grasping(target, u.scene.get_pairwise_contact_forces, [arm])[0]):
+            if bool(u.agent.grasping(target, ContactForces(u.scene), [arm])[0]):
                 down = link.pose.sp.to_transformation_matrix()[:3, 2]
                 holds.append((arm, float(np.degrees(np.arccos(np.clip(-down[2], -1.0, 1.0))))))
         return None, None, None, None, info
@@ -220,10 +218,9 @@ def test_an_object_resting_upside_down_in_the_receptacle_counts_as_placed():
         for _ in range(60):
             env.step(hold)
         assert target.pose.sp.to_transformation_matrix()[2, 2] < -0.9, "it turned over"
-        now = u._measure()
-        pos, quat = now.pos, now.quat
-        grasped = torch.zeros(pos.shape[:2], dtype=torch.bool)  # nothing holds it
-        placed.append(bool(u._goal_conditions(pos, quat, grasped)[1][0]))
+        now = u._measured()
+        grasped = torch.zeros(now.pos.shape[:2], dtype=torch.bool)  # nothing holds it
+        placed.append(bool(u._goal_conditions(now, grasped)[1][0]))
     env.close()
     assert placed == [True, False]
 

@@ -19,6 +19,7 @@ from mani_skill.utils.geometry.rotation_conversions import (
 from mani_skill.utils.wrappers import RecordEpisode
 
 from conftest import hand_spec, make_env
+from instructmove_ms.agents.contacts import ContactForces
 from instructmove_ms.agents.piperx import joint_order, rest_qpos
 from instructmove_ms.episode import EpisodeSpec
 
@@ -279,8 +280,8 @@ def test_gripper_grasps_and_lifts(env, kin, side, category, grasp_depth):
     rise = float(obj.pose.p[0, 2]) - z0
     assert rise > 0.04, f"{category} rose {rise:.3f} m"
     arm = SIDES.index(side)
-    assert bool(agent.grasping(obj, agent.scene.get_pairwise_contact_forces, [arm])[0])
-    assert not bool(agent.grasping(obj, agent.scene.get_pairwise_contact_forces, [1 - arm])[0])
+    assert bool(agent.grasping(obj, ContactForces(agent.scene), [arm])[0])
+    assert not bool(agent.grasping(obj, ContactForces(agent.scene), [1 - arm])[0])
     assert bool(agent.is_grasping(obj)[0])
     assert bool(info["lift"]) and bool(info["success"])
 
@@ -461,3 +462,23 @@ def test_replay_converts_joint_positions_to_deltas(tmp_path):
     assert actions.shape[0] >= 30 and actions.shape[1] == 14
     assert np.abs(actions[:, :12]).max() <= 1.0
     np.testing.assert_allclose(replayed[-1, 13:29], recorded[-1, 13:29], atol=0.01)
+
+
+def test_base_links_stand_on_the_table_without_contacts():
+    """The mounting links and the table ignore each other (no contact for the solver); the
+    objects still rest on the table."""
+    env = make_env(robot_uids="piperx")
+    env.reset(seed=0)
+    u = env.unwrapped
+    z0 = u.objects[0].pose.p[0, 2].item()
+    for _ in range(10):
+        env.step(None)
+    pairs = {
+        frozenset(body.entity.name.split("_", 1)[1] for body in contact.bodies)
+        for contact in u.scene.get_contacts()
+    }
+    z = u.objects[0].pose.p[0, 2].item()
+    env.close()
+    assert not any("base_link" in name for pair in pairs for name in pair)
+    assert any("table" in pair for pair in pairs), "the objects touch the table"
+    assert abs(z - z0) < 0.01, "the object rests where it was placed"
