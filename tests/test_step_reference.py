@@ -3,8 +3,10 @@ before the step was made cheaper (tests/data/step_reference.json): one pass of m
 per step, contacts read once, grasp checks that stop at an untouched finger. The PiperX
 cases were recorded again when its SRDF removed the self-contacts of its own links (a
 change of the physics, not of the scoring), and the PickSpatial case when relations gained
-their direction cone (its seed's scene moved). ``tests/tools/record_step_reference.py CASE``
-records a case again."""
+their direction cone (its seed's scene moved). The scoring made batched (one read of the
+scene, rotations by cross products, grasp checks that ask bounding boxes first) and the
+PiperX's base links ignoring the table left every case as recorded.
+``tests/tools/record_step_reference.py CASE`` records a case again."""
 
 from __future__ import annotations
 
