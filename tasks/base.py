@@ -254,9 +254,9 @@ class InstructMoveEnv(BaseEnv):
         self._target_column = self._target.clamp(min=0)[:, None]  # (N, 1) for gathers
         self._target_pair = self._target_column[:, :, None].expand(-1, 2, 1)
         self._has_target = ~self._no_target[:, None]
-        targets = sorted({max(ep.target, 0) for ep in self.episodes})
         self._target_rows = [  # each object that is a target: the sub-scenes where it is
-            (k, None if len(targets) == 1 else self._target_column[:, 0] == k) for k in targets
+            (k, self._target_column[:, 0] == k)
+            for k in sorted({max(ep.target, 0) for ep in self.episodes})
         ]
         self._half_flat = self._box_half.flatten(1)
         self._z0 = torch.zeros((self.num_envs, len(self.objects)), device=self.device)
@@ -330,10 +330,7 @@ class InstructMoveEnv(BaseEnv):
 
     def _target_grasped(self, now: Measured) -> torch.Tensor:
         """(N,) whether each sub-scene's target is grasped."""
-        flags = [
-            self._grasp(now, k) if rows is None else self._grasp(now, k) & rows
-            for k, rows in self._target_rows
-        ]
+        flags = [self._grasp(now, k) & rows for k, rows in self._target_rows]
         return flags[0] if len(flags) == 1 else torch.stack(flags).any(dim=0)
 
     def _watched(self, raised: torch.Tensor) -> torch.Tensor:
@@ -359,8 +356,7 @@ class InstructMoveEnv(BaseEnv):
 
     def evaluate(self) -> dict:
         th, schema = self.task.thresholds, self.task.stages
-        self._now = None
-        now = self._measured()
+        self._now = now = self._reader.measure()  # the step's one read
         pos = now.pos
         dist = box_distance(now.tcp[..., :3], pos, now.quat, self._box_center, self._box_half).amin(
             dim=1

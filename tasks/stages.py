@@ -67,19 +67,10 @@ class StageTracker:
     reported stays as it was after later steps and resets."""
 
     def __init__(self, names: tuple[str, ...], num_envs: int, device) -> None:
-        self.names = names
         #: (N, stages) latched flags, in the schema's order
         self.flags = torch.zeros((num_envs, len(names)), dtype=torch.bool, device=device)
         #: (N, 2) the first object reached and the first lifted, -1 before there is one
         self.first = torch.full((num_envs, 2), -1, dtype=torch.long, device=device)
-
-    @property
-    def reached_object(self) -> torch.Tensor:
-        return self.first[:, 0]
-
-    @property
-    def lifted_object(self) -> torch.Tensor:
-        return self.first[:, 1]
 
     def reset(self, env_idx: torch.Tensor) -> None:
         self.flags = self.flags.index_fill(0, env_idx, False)
