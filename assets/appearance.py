@@ -27,7 +27,9 @@ from pathlib import Path
 
 import numpy as np
 
-from .catalog import Instance, content_hash
+from ..files import write_text
+from .catalog import Instance
+from .identity import content_hash
 from .vocab import MATERIALS
 
 #: Rendered colours at least this far apart read as different colours (``delta_e``).
@@ -78,6 +80,37 @@ def table_path(snapshot: str = "default") -> Path:
     """The file of a snapshot's rendered colours and swatches, beside the snapshot."""
     folder = resources.files("instructmove_ms.assets").joinpath("snapshots", "appearance")
     return Path(str(folder)) / f"{snapshot}.json"
+
+
+def write_table_file(path: Path, instances: dict, swatches: dict) -> Path:
+    """Write a table (atomically), one entry per line: ``instances`` maps a uuid to its
+    content hash and rendered colour, ``swatches`` "colour/material" to a rendered colour."""
+
+    def block(items: dict) -> str:
+        lines = (
+            f"{json.dumps(k)}: {json.dumps(v, sort_keys=True)}" for k, v in sorted(items.items())
+        )
+        return "{\n" + ",\n".join(lines) + "\n}"
+
+    return write_text(
+        path, f'{{"instances": {block(instances)},\n"swatches": {block(swatches)}}}\n'
+    )
+
+
+def rehash_table(path: Path, old: dict[str, str], instances: list[Instance]) -> int:
+    """Move table ``path`` to the instances' current content hashes, where its entry was
+    measured on the content whose former hash ``old`` gives (uuid -> hash); other entries
+    are dropped (rendered again on use). Returns how many entries it kept."""
+    table = json.loads(path.read_text())
+    rows = {
+        inst.uuid: {**table["instances"][inst.uuid], "hash": content_hash(inst)}
+        for inst in instances
+        if table["instances"].get(inst.uuid, {}).get("hash") == old.get(inst.uuid)
+    }
+    write_table_file(path, rows, table["swatches"])
+    _table.cache_clear()
+    lab_of.cache_clear()
+    return len(rows)
 
 
 @cache

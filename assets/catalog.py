@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import hashlib
-import json
 import uuid as uuidlib
 from collections.abc import Iterable
 from dataclasses import asdict, dataclass, field
@@ -194,24 +193,6 @@ def generate_instance(category: str, index: int) -> Instance:
         is_container=gen.container,
         interior=interior,
     )
-
-
-def content_hash(inst: Instance) -> str:
-    """sha256 of everything that defines the instance: its parts and stated traits."""
-    payload = {  # mesh paths depend on where the user keeps data: their content is in the uuid
-        "parts": [{k: v for k, v in asdict(p).items() if k != "mesh"} for p in inst.parts],
-        "traits": [
-            inst.colors,
-            inst.material,
-            inst.shape,
-            inst.nouns,
-            inst.is_graspable,
-            inst.is_container,
-        ],
-        "interior": None if inst.interior is None else asdict(inst.interior),
-    }
-    text = json.dumps(payload, sort_keys=True, default=lambda v: round(v, 9))
-    return hashlib.sha256(text.encode()).hexdigest()
 
 
 class Catalog:

@@ -3,7 +3,6 @@
 
 from __future__ import annotations
 
-import json
 from collections.abc import Iterable
 from functools import cache
 from pathlib import Path
@@ -11,9 +10,9 @@ from pathlib import Path
 import numpy as np
 import sapien
 
-from ..files import write_text
-from .appearance import MEASURES, dominant, srgb_to_lab
-from .catalog import Instance, content_hash
+from .appearance import MEASURES, dominant, srgb_to_lab, write_table_file
+from .catalog import Instance
+from .identity import content_hash
 from .parts import Part
 from .sapien_builder import actor_builder, add_part
 from .sim import bare_scene, look_at
@@ -94,15 +93,7 @@ def write_table(instances: Iterable[Instance], path: Path) -> Path:
     swatches = {
         f"{c}/{m}": list(rendered_swatch(c, m)) for c in sorted(COLORS) for m in sorted(MATERIALS)
     }
-
-    def block(items: dict) -> str:
-        lines = (
-            f"{json.dumps(k)}: {json.dumps(v, sort_keys=True)}" for k, v in sorted(items.items())
-        )
-        return "{\n" + ",\n".join(lines) + "\n}"
-
-    body = f'{{"instances": {block(rows)},\n"swatches": {block(swatches)}}}\n'
-    return write_text(path, body)
+    return write_table_file(path, rows, swatches)
 
 
 MEASURES.update(instance=rendered_color, swatch=rendered_swatch)

@@ -1,9 +1,11 @@
 """Snapshots: immutable lists of assets (uuid + content hash) that experiments freeze.
 
 A snapshot file names every instance by (category, index) with its uuid and the hash of its
-generated content. Loading regenerates each instance and refuses a snapshot whose content no
-longer matches, so an experiment can never silently run on changed assets. Growing the
-library (new categories, more instances) writes a new snapshot; old ones keep their meaning.
+generated content (``identity.content_hash``: numbers counted in quanta far above
+floating-point noise, so every machine computes the same hash). Loading regenerates each
+instance and refuses a snapshot whose content no longer matches, so an experiment can never
+silently run on changed assets. Growing the library (new categories, more instances) writes
+a new snapshot; old ones keep their meaning.
 """
 
 from __future__ import annotations
@@ -15,8 +17,9 @@ from importlib import resources
 from pathlib import Path
 
 from ..files import write_json, write_text
-from .catalog import Catalog, Instance, content_hash, generate_instance
+from .catalog import Catalog, Instance, generate_instance
 from .generators import GENERATORS
+from .identity import IDENTITY_SCHEME, content_hash, hash_for
 from .importer import data_home
 
 DEFAULT_SNAPSHOT = "default"
@@ -24,25 +27,18 @@ SNAPSHOT_DIR = "snapshots"
 
 
 def build_entries(categories: list[str], per_category: int) -> list[dict]:
-    entries = []
-    for cat in categories:
-        for index in range(per_category):
-            inst = generate_instance(cat, index)
-            entries.append(
-                {
-                    "uuid": inst.uuid,
-                    "category": cat,
-                    "index": index,
-                    "content_hash": content_hash(inst),
-                }
-            )
-    return entries
+    return [
+        entry_of(generate_instance(cat, index))
+        for cat in categories
+        for index in range(per_category)
+    ]
 
 
 def write_snapshot(path: Path, name: str, entries: list[dict]) -> Path:
-    """Write atomically (temporary file in the same folder, then rename)."""
-    text = json.dumps({"name": name, "instances": entries}, indent=1, sort_keys=True) + "\n"
-    return write_text(path, text)
+    """Write atomically (temporary file in the same folder, then rename), under the
+    current identity scheme."""
+    data = {"identity": IDENTITY_SCHEME, "name": name, "instances": entries}
+    return write_text(path, json.dumps(data, indent=1, sort_keys=True) + "\n")
 
 
 def package_snapshot_dir() -> Path:
@@ -96,18 +92,55 @@ def load_snapshot(name: str = DEFAULT_SNAPSHOT) -> Catalog:
     path = snapshot_path(name)
     if path is None:
         raise ValueError(f"unknown snapshot {name!r}; allowed: {available_snapshots()}")
-    data = json.loads(path.read_text())
+    return Catalog(name, _checked(name, json.loads(path.read_text())))
+
+
+def _checked(name: str, data: dict) -> list[Instance]:
+    """The instances of snapshot file ``data``, each regenerated and hash-checked under
+    the file's identity scheme."""
+    scheme = data.get("identity", 1)
     instances = []
     for entry in data["instances"]:
         inst = _load_entry(name, entry)
-        if inst.uuid != entry["uuid"] or content_hash(inst) != entry["content_hash"]:
+        if inst.uuid != entry["uuid"] or hash_for(inst, scheme) != entry["content_hash"]:
+            hint = (
+                " (it was frozen with exact floats, identity scheme 1, which another "
+                "machine's math kernels can break: `instructmove assets rehash "
+                f"{name}` re-hashes it where it still loads)"
+                if scheme == 1
+                else ""
+            )
             raise ValueError(
                 f"snapshot {name!r} is stale: {entry['category']} #{entry['index']} "
                 f"({entry['uuid']}) changed since it was frozen; rebuild it with "
-                "`instructmove assets build` or freeze a new snapshot"
+                f"`instructmove assets build` or freeze a new snapshot{hint}"
             )
         instances.append(inst)
-    return Catalog(name, instances)
+    return instances
+
+
+def rehash(name: str) -> tuple[int, int]:
+    """Rewrite snapshot ``name`` under the current identity scheme, after checking every
+    instance under the scheme it was written with (neither the instances nor their uuids
+    change), and move its rendered-colour table along. Returns how many instances it holds
+    and how many stored colours were kept."""
+    from .appearance import rehash_table, table_path
+
+    path = snapshot_path(name)
+    if path is None:
+        raise ValueError(f"unknown snapshot {name!r}; allowed: {available_snapshots()}")
+    data = json.loads(path.read_text())
+    instances = _checked(name, data)
+    old = {e["uuid"]: e["content_hash"] for e in data["instances"]}
+    entries = [
+        {**e, "content_hash": content_hash(i)}
+        for e, i in zip(data["instances"], instances, strict=True)
+    ]
+    write_snapshot(path, name, entries)
+    load_snapshot.cache_clear()
+    table = table_path(name)
+    kept = rehash_table(table, old, instances) if table.is_file() else 0
+    return len(entries), kept
 
 
 def entry_of(inst: Instance) -> dict:

@@ -169,6 +169,14 @@ def _cmd_assets_build(args: argparse.Namespace) -> int:
     return 0
 
 
+def _cmd_assets_rehash(args: argparse.Namespace) -> int:
+    from instructmove_ms.assets.snapshot import rehash
+
+    count, kept = rehash(args.name)
+    print(f"snapshot {args.name!r}: {count} instances re-hashed, {kept} stored colours kept")
+    return 0
+
+
 def _cmd_assets_import(args: argparse.Namespace) -> int:
     from pathlib import Path
 
@@ -646,6 +654,11 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--name", default="default", help="snapshot name (default: the shipped one)")
     p.add_argument("--per-category", type=int, default=INSTANCES_PER_CATEGORY)
     p.set_defaults(func=_cmd_assets_build)
+    p = assets.add_parser(
+        "rehash", help="re-hash a snapshot written by an older identity scheme (same assets)"
+    )
+    p.add_argument("name", help="snapshot name")
+    p.set_defaults(func=_cmd_assets_rehash)
     p = assets.add_parser("import", help="import a folder of meshes + metadata.json")
     p.add_argument("source", help="folder with metadata.json and the mesh files")
     p.add_argument("--name", required=True, help="name of the new snapshot")

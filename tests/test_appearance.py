@@ -21,8 +21,8 @@ from instructmove_ms.assets.appearance import (
     shown_color,
     swatch,
 )
-from instructmove_ms.assets.catalog import content_hash
 from instructmove_ms.assets.expressions import all_phrases
+from instructmove_ms.assets.identity import content_hash
 from instructmove_ms.assets.photometry import rendered_color, rendered_swatch
 from instructmove_ms.assets.vocab import COLORS
 from instructmove_ms.language import color_word
