@@ -5,6 +5,14 @@ axis of the part's cross-section. A grasp is kept when the part's width along th
 the gripper's opening, the grasp centre is high enough for the fingertips to clear the table,
 and no other part rises above the grasp inside the fingers' column. A container that fits
 the hand is also held around its whole section.
+
+Designed parts share faces and heights exactly (a lid's rim on a wall's top, pads that
+touch a neighbour), where a comparison would be decided by the last bit of a float, which
+BLAS kernels and CPUs change. Every comparison therefore keeps ``EPS`` on one side: a
+point ``EPS`` inside a part's surface is inside, one on it touches and is outside; widths
+and heights within ``EPS`` of a limit pass it; grasps are ordered by height and width
+counted in ``ORDER_QUANTUM`` (``identity.quantise``), so equal heights keep the parts' own
+order on every machine.
 """
 
 from __future__ import annotations
@@ -15,6 +23,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .catalog import Instance
+from .identity import quantise
 from .parts import Part, quat_to_matrix, union_bounds
 
 DOWN = (0.0, 0.0, -1.0)
@@ -24,6 +33,10 @@ MIN_HEIGHT = 0.004  # grasp centres lower than this would put the fingertips int
 FINGER_HALF_WIDTH = 0.012
 PALM_HEIGHT = 0.045  # the palm sits this far above the grasp centre
 MIN_PART_HEIGHT = 0.004  # thinner parts (a pull tab) give the fingers nothing to hold
+#: Geometric tolerance of every comparison (m): far above float noise, far below a part.
+EPS = 1e-7
+#: Heights and widths that order the grasps are counted in this (m).
+ORDER_QUANTUM = 1e-6
 
 
 @dataclass(frozen=True)
@@ -56,7 +69,7 @@ def _horizontal_widths(part: Part) -> list[tuple[np.ndarray, float]]:
     out = []
     for axis, width in axes:
         tilt = math.asin(min(1.0, abs(float(axis[2]))))
-        if tilt < math.radians(45):  # a slanted wall is cut wider at a fixed height
+        if tilt < math.radians(45) - EPS:  # a slanted wall is cut wider at a fixed height
             flat = np.array([axis[0], axis[1], 0.0])
             out.append((flat / np.linalg.norm(flat), float(width) / math.cos(tilt)))
     return out
@@ -66,26 +79,28 @@ def section_center(part: Part, z: float) -> np.ndarray:
     """Centre of the part's horizontal cross-section at height ``z`` (a slanted wall's
     section moves sideways with height)."""
     rot = quat_to_matrix(part.quat)
-    k = int(np.argmax(np.abs(rot[2])))
+    upright = np.abs(rot[2])
+    k = int(np.flatnonzero(upright >= upright.max() - EPS)[0])  # the first of equal ones
     slope = rot[:, k] / rot[2, k]
     return np.asarray(part.pos) + slope * (z - part.pos[2])
 
 
 def contains(part: Part, points: np.ndarray) -> np.ndarray:
-    """Which of ``points`` (M, 3), in the object frame, lie inside ``part``."""
+    """Which of ``points`` (M, 3), in the object frame, lie inside ``part`` by more than
+    ``EPS`` (a point on its surface touches it)."""
     local = (points - np.asarray(part.pos)) @ quat_to_matrix(part.quat)
-    s = part.size
+    s = np.asarray(part.size) - EPS
     if part.shape in ("box", "mesh"):  # a mesh piece counts as its bounding box
-        return np.all(np.abs(local) <= np.asarray(s), axis=1)
+        return np.all(np.abs(local) < s, axis=1)
     if part.shape == "sphere":
-        return np.linalg.norm(local, axis=1) <= s[0]
+        return np.linalg.norm(local, axis=1) < s[0]
     if part.shape == "ellipsoid":
-        return np.sum((local / np.asarray(s)) ** 2, axis=1) <= 1.0
+        return np.sum((local / s) ** 2, axis=1) < 1.0
     radial = np.linalg.norm(local[:, 1:], axis=1)
     if part.shape == "cylinder":
-        return (np.abs(local[:, 0]) <= s[1]) & (radial <= s[0])
+        return (np.abs(local[:, 0]) < s[1]) & (radial < s[0])
     along = np.clip(np.abs(local[:, 0]) - s[1], 0.0, None)  # capsule
-    return np.hypot(along, radial) <= s[0]
+    return np.hypot(along, radial) < s[0]
 
 
 def _blocked(
@@ -119,16 +134,25 @@ def grasp_affordances(inst: Instance, max_opening: float = 0.08) -> list[Grasp]:
         lo, hi = part.bounds()
         top, height = float(hi[2]), float(hi[2] - lo[2])
         z = top - min(FINGER_DEPTH, height / 2)
-        if z < MIN_HEIGHT or height < MIN_PART_HEIGHT:
+        if z < MIN_HEIGHT - EPS or height < MIN_PART_HEIGHT - EPS:
             continue
         others = [p for p in solids if p is not part]
         center = section_center(part, z)
         for axis, width in _horizontal_widths(part):
-            if 0.003 <= width <= max_opening - 2 * MARGIN and not _blocked(
+            if width >= 0.003 - EPS and _fits(width, max_opening) and not _blocked(
                 center, top, z, axis, width, others
             ):
                 grasps.append(_grasp(center, axis, width))
-    return sorted(grasps, key=lambda g: (-g.center[2], g.width))
+    return sorted(
+        grasps,
+        key=lambda g: (-quantise(g.center[2], ORDER_QUANTUM), quantise(g.width, ORDER_QUANTUM)),
+    )
+
+
+def _fits(width: float, max_opening: float) -> bool:
+    """Whether fingers opening ``max_opening`` close on ``width`` with ``MARGIN`` free on
+    each side."""
+    return width <= max_opening - 2 * MARGIN + EPS
 
 
 def _grasp(center: np.ndarray, axis: np.ndarray, width: float) -> Grasp:
@@ -145,14 +169,14 @@ def enveloping_grasps(inst: Instance, max_opening: float = 0.08) -> list[Grasp]:
     lo, hi = union_bounds(solids)
     top = float(hi[2])
     z = top - min(FINGER_DEPTH, float(hi[2] - lo[2]) / 2)
-    section = [p for p in solids if p.bounds()[0][2] <= z <= p.bounds()[1][2]]
-    if len(section) < 2 or z < MIN_HEIGHT:
+    section = [p for p in solids if p.bounds()[0][2] - EPS <= z <= p.bounds()[1][2] + EPS]
+    if len(section) < 2 or z < MIN_HEIGHT - EPS:
         return []
     slo, shi = union_bounds(section)
     center = np.array([*(0.5 * (slo[:2] + shi[:2])), z])
     grasps = []
     for k in (0, 1):
         axis, width = np.eye(3)[k], float(shi[k] - slo[k])
-        if width <= max_opening - 2 * MARGIN and not _blocked(center, top, z, axis, width, solids):
+        if _fits(width, max_opening) and not _blocked(center, top, z, axis, width, solids):
             grasps.append(_grasp(center, axis, width))
     return grasps
