@@ -6,7 +6,16 @@ change of the physics, not of the scoring), and the PickSpatial case when relati
 their direction cone (its seed's scene moved). The scoring made batched (one read of the
 scene, rotations by cross products, grasp checks that ask bounding boxes first) and the
 PiperX's base links ignoring the table left every case as recorded.
-``tests/tools/record_step_reference.py CASE`` records a case again."""
+``tests/tools/record_step_reference.py CASE`` records a case again.
+
+The reference was recorded on one machine and is checked on others, whose BLAS kernels,
+CPU features and PhysX code paths differ in the last bits: stage flags and the indices of
+reached and lifted objects must be equal, distances and rewards may differ by what a
+positional error of ``POSITION_ERROR`` in every body makes of them. A distance between two
+bodies moves by at most twice that; the dense reward by at most its largest slope per metre
+of distance or rise (``reward_slope``) times that. 10 um is 2,000 times less than the reach
+threshold and 3,000 times less than the lift height, and about 100 times the differences
+seen between machines (rewards within 7.3e-6)."""
 
 from __future__ import annotations
 
@@ -20,9 +29,30 @@ import pytest
 import torch
 
 from instructmove_ms.demos.generate import generate
+from instructmove_ms.tasks import TASKS
 
 REFERENCE = json.loads((Path(__file__).parent / "data" / "step_reference.json").read_text())
-FLOATS = ("target_distance", "stage_score", "reward")
+#: How far any body's position may land from where the recording machine put it (m).
+POSITION_ERROR = 5e-6
+#: float32 resolution of a reward of about 10 (the env scores in float32).
+FLOAT32_REWARD = 2e-6
+
+
+def reward_slope(task: str) -> float:
+    """The largest change of the dense reward per metre of any distance or rise: the
+    approach term 1 - tanh(10 d) (10), the raise term 2 * rise / lift (2 / lift) and, for
+    PlaceA2B, the carry term 2 * (1 - tanh(5 d)) (10); see ``compute_dense_reward``."""
+    env_task = TASKS[task]
+    carry = 10.0 if env_task.family == "PlaceA2B" else 0.0
+    return 10.0 + 2.0 / env_task.thresholds.lift + carry
+
+
+def tolerances(task: str) -> dict[str, float]:
+    distance = 2 * POSITION_ERROR
+    return {
+        "target_distance": distance,
+        "reward": reward_slope(task) * distance + FLOAT32_REWARD,
+    }
 
 
 def replayed(case: str, folder: Path, keys) -> dict:
@@ -58,9 +88,12 @@ def test_replayed_demo_scores_every_step_as_before(case, tmp_path):
     got = replayed(case, tmp_path, expected["steps"])
     assert got["seed"] == expected["seed"], "the same demo"
     assert len(got["steps"]["reward"]) == len(expected["steps"]["reward"])
+    atol = tolerances(case.split("/")[0])
     for key, values in expected["steps"].items():
-        if key in FLOATS:
-            np.testing.assert_allclose(got["steps"][key], values, rtol=0, atol=1e-6, err_msg=key)
-        else:
+        if key in atol:
+            np.testing.assert_allclose(
+                got["steps"][key], values, rtol=0, atol=atol[key], err_msg=key
+            )
+        else:  # flags, object indices and the stage score they make: exactly
             assert got["steps"][key] == values, key
     assert any(expected["steps"]["success"]), "the demo succeeds: grasps were checked"
