@@ -1,10 +1,17 @@
 #!/usr/bin/env bash
 # Set the machine up (idempotent) and run the linter and the test suite (which loads our
-# LeRobot export with the real lerobot in its own environment, built here once).
+# LeRobot export with the real lerobot in its own environment, built here once). Without
+# arguments the portability tests then run again under several BLAS kernels and without
+# numpy's optional CPU features (scripts/portability.sh); with arguments, pytest gets them.
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 bash scripts/setup.sh --dev
 bash scripts/lerobot_env.sh  # the real LeRobot, isolated, to load our exported datasets
 py="${PYTHON:-python3}"
 "$py" -m ruff check .
-"$py" -m pytest -q "$@"
+if [ "$#" -gt 0 ]; then
+  "$py" -m pytest -q "$@"
+  exit
+fi
+"$py" -m pytest -q -m "not portability"
+bash scripts/portability.sh

@@ -31,6 +31,8 @@ import torch
 from instructmove_ms.demos.generate import generate
 from instructmove_ms.tasks import TASKS
 
+pytestmark = pytest.mark.portability  # recorded on one machine, checked on every other
+
 REFERENCE = json.loads((Path(__file__).parent / "data" / "step_reference.json").read_text())
 #: How far any body's position may land from where the recording machine put it (m).
 POSITION_ERROR = 5e-6
