@@ -18,13 +18,13 @@ mesh piece volume           1e-12 m^3      0.001 mm^3
 
 A number is counted as ``floor(value / quantum + OFFSET)``: the boundaries between counts
 sit at 0.382 of a quantum, not at the half, where designed decimal values land exactly (a
-leaf of 1,396.5 mg). Two generations of an instance hash alike unless one of their
-numbers lies within its noise of a boundary: a few ULPs are below 1e-9 of a quantum for
-any value under a kilometre, so that has odds below 1e-9 per random number, and designed
-values (a few decimal digits below the quantum) stay at least 1e-5 of a quantum away. The mass is hashed although it is derived, so a
-change of a material's density changes identity too. Snapshots record the scheme
-(``IDENTITY_SCHEME``); files without one were written by the exact hash of scheme 1, which
-``exact_hash`` still reads.
+leaf of 1,396.5 mg). Two generations of an instance hash alike unless one of their numbers
+lies within its noise of a boundary: a few ULPs are about 1e-9 of a quantum for values up
+to a metre or ten kilograms, so odds of about 1e-9 per number; the shipped library's
+nearest number lies 4.5e-6 of a quantum from a boundary (a test keeps it above 1e-7). The
+mass is hashed although it is derived, so a change of a material's density changes
+identity too. Snapshots record the scheme (``IDENTITY_SCHEME``); files without one were
+written by the exact hash of scheme 1, which ``exact_hash`` still reads.
 """
 
 from __future__ import annotations
