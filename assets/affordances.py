@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import cache
 
 import numpy as np
 
@@ -147,6 +148,13 @@ def grasp_affordances(inst: Instance, max_opening: float = 0.08) -> list[Grasp]:
         grasps,
         key=lambda g: (-quantise(g.center[2], ORDER_QUANTUM), quantise(g.width, ORDER_QUANTUM)),
     )
+
+
+@cache
+def graspable(inst: Instance, max_opening: float) -> bool:
+    """Whether ``inst`` offers a top-down grasp to fingers opening ``max_opening`` metres
+    (remembered per instance and opening: the verifier asks it of every candidate)."""
+    return bool(grasp_affordances(inst, max_opening))
 
 
 def _fits(width: float, max_opening: float) -> bool:

@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import dataclasses
 
-from .assets.affordances import grasp_affordances
+from .assets.affordances import graspable
 from .assets.catalog import Catalog
 from .episode import CONDITIONS, EpisodeSpec
 from .family import TaskSpec
@@ -94,7 +94,7 @@ def verify(
         problems.append(f"only {spec.num_goals} candidate goal(s)")
     for k in spec.candidates:
         inst = catalog[spec.objects[k].uuid]
-        if not inst.is_graspable or not grasp_affordances(inst, gripper_opening):
+        if not inst.is_graspable or not graspable(inst, gripper_opening):
             problems.append(f"candidate {k} ({inst.category}) cannot be grasped")
     for k in spec.destinations:
         inst = catalog[spec.objects[k].uuid]
