@@ -66,3 +66,9 @@ def test_eval_writes_reports_and_rejects_unknown_policies(tmp_path, capsys):
     assert json.loads((out / "summary.json").read_text())["episodes"] == 1
     assert main([*args[:5], "--policy", "nonsense", "--out", str(out)]) == 2
     assert "'nonsense'" in capsys.readouterr().err
+
+
+def test_assets_rehash_names_an_unknown_snapshot(capsys):
+    assert main(["assets", "rehash", "nosuch"]) == 2
+    err = capsys.readouterr().err
+    assert "unknown snapshot 'nosuch'" in err and "'default'" in err
