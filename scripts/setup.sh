@@ -8,13 +8,20 @@
 #   1. PyTorch (CPU build pinned first, so that no CUDA wheels are pulled on a CPU machine);
 #   2. the package itself (pip install -e .), re-run only when the packaging files change;
 #   3. a Vulkan driver SAPIEN accepts: Mesa lavapipe >= 24.3 when no GPU driver renders.
-# Environment: PYTHON (interpreter, default python3), INSTRUCTMOVE_TORCH (torch version).
+# Steps 1 and 2 install with the exact versions of constraints.txt (made by scripts/lock.sh),
+# the torch already installed (or asked for) taking the place of its torch pin; on a Python
+# other than the one the file was made for, they install without it.
+# Environment: PYTHON (interpreter, default python3), INSTRUCTMOVE_TORCH (torch version,
+# default constraints.txt's).
 set -euo pipefail
 
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$root"
 py="${PYTHON:-python3}"
-torch_version="${INSTRUCTMOVE_TORCH:-2.13.0}"
+lock="$root/constraints.txt"
+[ -f "$lock" ] || { echo "setup.sh: $lock is missing (scripts/lock.sh writes it)" >&2; exit 1; }
+locked_torch="$(sed -n 's/^torch==//p' "$lock")"
+torch_version="${INSTRUCTMOVE_TORCH:-$locked_torch}"
 extras=""
 for arg in "$@"; do
   case "$arg" in
@@ -28,18 +35,38 @@ as_root() { if [ "$(id -u)" = 0 ]; then "$@"; else sudo "$@"; fi; }
 pip_install() { PIP_ROOT_USER_ACTION=ignore "$py" -m pip install --quiet --disable-pip-version-check "$@"; }
 dist_version() { "$py" -c "import importlib.metadata as m; print(m.version('$1'))" 2>/dev/null; }
 
+# The pins: constraints.txt, its torch line following the torch this machine has or gets.
+stamp_dir="$root/.cache"
+torch_installed="$(dist_version torch)" || torch_installed=""
+torch_now="${torch_installed:-$torch_version}"
+torch_now="${torch_now%%+*}"  # 2.13.0+cpu meets torch==2.13.0
+lock_py="$(sed -n 's/^# Python \([0-9][0-9.]*\) on .*/\1/p' "$lock")"
+this_py="$("$py" -c 'import sys; print("%d.%d" % sys.version_info[:2])')"
+if [ "$lock_py" != "$this_py" ]; then
+  log "constraints.txt is for Python $lock_py, this is $this_py: installing without it"
+  pins=()
+elif [ "$torch_now" = "$locked_torch" ]; then
+  pins=("$lock")
+else
+  log "torch $torch_now where constraints.txt has $locked_torch: the other pins still apply"
+  mkdir -p "$stamp_dir"
+  sed "s/^torch==.*/torch==$torch_now/" "$lock" > "$stamp_dir/constraints-torch.txt"
+  pins=("$stamp_dir/constraints-torch.txt")
+fi
+constrain=()
+[ "${#pins[@]}" = 0 ] || constrain=(-c "${pins[0]}")
+
 # 1. PyTorch --------------------------------------------------------------------------
-if torch_installed="$(dist_version torch)"; then
+if [ -n "$torch_installed" ]; then
   log "torch $torch_installed already installed"
 else
   log "installing torch==$torch_version"
-  pip_install "torch==$torch_version"
+  pip_install "${constrain[@]}" "torch==$torch_version"
 fi
 
 # 2. The package ----------------------------------------------------------------------
-stamp_dir="$root/.cache"
 stamp="$stamp_dir/setup-${extras:-[runtime]}.stamp"
-want="$(cat pyproject.toml setup.cfg | sha256sum | cut -d' ' -f1) $("$py" -c 'import sys; print(sys.prefix)')"
+want="$(cat pyproject.toml setup.cfg "${pins[@]}" | sha256sum | cut -d' ' -f1) $("$py" -c 'import sys; print(sys.prefix)')"
 installed_here() {
   (cd / && "$py" -c "import importlib.util as u, sys; s = u.find_spec('instructmove_ms'); sys.exit(not (s and s.origin.startswith('$root/')))") \
     >/dev/null 2>&1
@@ -47,8 +74,8 @@ installed_here() {
 if [ -f "$stamp" ] && [ "$(cat "$stamp")" = "$want" ] && installed_here; then
   log "instructmove-ms already installed (packaging unchanged)"
 else
-  log "installing instructmove-ms$extras (editable)"
-  pip_install -e ".$extras"
+  log "installing instructmove-ms$extras (editable${pins:+, pinned by ${pins[0]#"$root/"}})"
+  pip_install "${constrain[@]}" -e ".$extras"
   mkdir -p "$stamp_dir"
   printf '%s' "$want" > "$stamp"
 fi
