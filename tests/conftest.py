@@ -10,32 +10,10 @@ import instructmove_ms  # noqa: F401  (registers envs and robots)
 ENV_ID = "PickCategory-InstructMove"
 
 
-def blas_kernel() -> str:
-    """The kernel numpy's OpenBLAS runs on this machine (``OPENBLAS_CORETYPE`` forces one)."""
-    import ctypes
-    import glob
-    import os
-
-    import numpy as np
-
-    libs = os.path.join(os.path.dirname(np.__file__), os.pardir, "numpy.libs", "libopenblas*")
-    for path in glob.glob(libs):
-        lib = ctypes.CDLL(path)
-        for name in ("openblas_get_corename64_", "openblas_get_corename"):
-            if hasattr(lib, name):
-                getter = getattr(lib, name)
-                getter.restype = ctypes.c_char_p
-                return getter().decode()
-    return "unknown"
-
-
 def pytest_report_header(config) -> str:
-    import os
+    from instructmove_ms.floats import describe
 
-    import numpy as np
-
-    disabled = os.environ.get("NPY_DISABLE_CPU_FEATURES", "") or "none"
-    return f"numpy {np.__version__}, BLAS kernel {blas_kernel()}, CPU features off: {disabled}"
+    return describe()
 
 
 def make_env(env_id: str = ENV_ID, **kwargs):
