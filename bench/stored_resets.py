@@ -4,7 +4,7 @@ For every family, robot and split (or the ones named), each stored spec is rebui
 ``reset(options={"episode": ...})``, which runs the verifier on load; the run fails on the
 first episode that does not rebuild, and prints the episodes per second and the BLAS
 kernel it ran on. ``tests/test_portability.py`` resets the first episode of each set under
-every floating-point set-up of CI; this resets all 3,200 (about 15 minutes on 2 cores):
+every floating-point set-up of CI; this resets all 2,400 (about 10 minutes on 2 cores):
 
     OPENBLAS_CORETYPE=Sandybridge python bench/stored_resets.py [--task T] [--robot R]
 """
