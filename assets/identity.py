@@ -58,21 +58,27 @@ def quantise(values, quantum: float) -> int | list[int]:
     return [math.floor(float(v) / quantum + OFFSET) for v in values]
 
 
+#: The quantum of each number of a part the hash counts (its mass is derived).
+PART_QUANTA = {
+    "size": LENGTH,
+    "pos": LENGTH,
+    "quat": QUATERNION,
+    "rgb": COLOR,
+    "solid_fraction": FRACTION,
+    "mass": MASS,
+    "mesh_volume": VOLUME,
+}
+
+
+def counted(part: Part) -> dict[str, tuple]:
+    """The part's counted numbers: name -> (value or values, quantum)."""
+    return {key: (getattr(part, key), quantum) for key, quantum in PART_QUANTA.items()}
+
+
 def _part_record(part: Part) -> dict:
-    return {
-        "name": part.name,
-        "shape": part.shape,
-        "size": quantise(part.size, LENGTH),
-        "pos": quantise(part.pos, LENGTH),
-        "quat": quantise(part.quat, QUATERNION),
-        "material": part.material,
-        "color": part.color,
-        "rgb": quantise(part.rgb, COLOR),
-        "solid_fraction": quantise(part.solid_fraction, FRACTION),
-        "visual_only": part.visual_only,
-        "mass": quantise(part.mass, MASS),
-        "mesh_volume": quantise(part.mesh_volume, VOLUME),
-    }
+    numbers = {key: quantise(v, q) for key, (v, q) in counted(part).items()}
+    words = {k: getattr(part, k) for k in ("name", "shape", "material", "color", "visual_only")}
+    return {**words, **numbers}
 
 
 def _traits(inst: Instance) -> list:

@@ -89,10 +89,15 @@ def _load_entry(name: str, entry: dict) -> Instance:
 @cache
 def load_snapshot(name: str = DEFAULT_SNAPSHOT) -> Catalog:
     """The catalog of snapshot ``name``; every instance rebuilt and hash-checked."""
+    return Catalog(name, _checked(name, json.loads(_existing(name).read_text())))
+
+
+def _existing(name: str) -> Path:
+    """The file of snapshot ``name``; a ``ValueError`` names the snapshots there are."""
     path = snapshot_path(name)
     if path is None:
         raise ValueError(f"unknown snapshot {name!r}; allowed: {available_snapshots()}")
-    return Catalog(name, _checked(name, json.loads(path.read_text())))
+    return path
 
 
 def _checked(name: str, data: dict) -> list[Instance]:
@@ -126,9 +131,7 @@ def rehash(name: str) -> tuple[int, int]:
     and how many stored colours were kept."""
     from .appearance import rehash_table, table_path
 
-    path = snapshot_path(name)
-    if path is None:
-        raise ValueError(f"unknown snapshot {name!r}; allowed: {available_snapshots()}")
+    path = _existing(name)
     data = json.loads(path.read_text())
     instances = _checked(name, data)
     old = {e["uuid"]: e["content_hash"] for e in data["instances"]}
