@@ -15,7 +15,7 @@ from .catalog import Instance
 from .identity import content_hash
 from .parts import Part
 from .sapien_builder import actor_builder, add_part
-from .sim import bare_scene, look_at
+from .sim import add_camera, bare_scene, look_at
 from .vocab import COLORS, MATERIALS
 
 WIDTH, HEIGHT = 160, 90  # the robots' default camera resolution
@@ -38,7 +38,7 @@ class _Stage:
         material = sapien.render.RenderMaterial(base_color=[*TABLE_RGB, 1.0], roughness=0.7)
         ground.add_box_visual(sapien.Pose([0, 0, -0.01]), [1, 1, 0.01], material=material)
         ground.build_static(name="table")
-        self.camera = self.scene.add_camera("camera", WIDTH, HEIGHT, np.deg2rad(45), 0.01, 10)
+        self.camera = add_camera(self.scene, "camera", WIDTH, HEIGHT, np.deg2rad(45), 0.01, 10)
 
     def look(self, builder: sapien.ActorBuilder, height: float) -> np.ndarray:
         """The Lab pixels of the actor ``builder`` makes, standing on the table, seen from

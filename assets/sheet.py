@@ -10,7 +10,7 @@ import numpy as np
 
 from ..files import atomic_path
 from .catalog import Instance
-from .sim import look_at, spawn, table_scene
+from .sim import add_camera, look_at, spawn, table_scene
 
 TILE = 192
 
@@ -18,7 +18,7 @@ TILE = 192
 def photograph(instances: list[Instance], tile: int = TILE) -> list[np.ndarray]:
     """One RGB tile per instance, from the front-left and above, framed by its size."""
     scene = table_scene(render=True)
-    camera = scene.add_camera("sheet", tile, tile, math.radians(40), 0.005, 10.0)
+    camera = add_camera(scene, "sheet", tile, tile, math.radians(40), 0.005, 10.0)
     images = []
     for inst in instances:
         entity = spawn(scene, inst, z=0.0)

@@ -60,6 +60,18 @@ def bare_scene() -> sapien.Scene:
     return sapien.Scene([system, sapien.render.RenderSystem(_render_device())])
 
 
+def add_camera(
+    scene: sapien.Scene, name: str, width: int, height: int, fovy: float, near: float, far: float
+) -> sapien.render.RenderCameraComponent:
+    """A camera of SAPIEN's default shader pack (float colour and segmentation), whatever
+    pack an env made before set as the global one (ManiSkill's rgb sensors set "minimal":
+    8-bit colour, no segmentation). ManiSkill's sensors set their own pack when made."""
+    from mani_skill.render import PREBUILT_SHADER_CONFIGS, set_shader_pack
+
+    set_shader_pack(PREBUILT_SHADER_CONFIGS["default"])
+    return scene.add_camera(name, width, height, fovy, near, far)
+
+
 def table_scene(render: bool = False) -> sapien.Scene:
     """Ground plane as the table top at z = 0 (wood friction), lit when ``render``."""
     scene = bare_scene()

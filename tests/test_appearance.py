@@ -99,3 +99,16 @@ def test_attribute_episodes_differ_in_what_the_camera_shows(attribute_env):
             others = [i for i in insts if i.uuid != target.uuid]
             assert all(look_differs(target.material, o.material) for o in others)
     assert seen == {"color", "size", "shape", "material"}
+
+
+def test_colours_render_the_same_after_an_env_set_its_camera_shader():
+    """ManiSkill's rgb sensors set a global shader pack (8-bit colour, no segmentation);
+    a colour measured afterwards (a user snapshot's, on first use inside an env) still
+    matches the table."""
+    from conftest import make_env
+
+    env = make_env(obs_mode="rgb", render_backend="cpu")
+    env.reset(seed=0)
+    env.close()
+    inst = load_snapshot().of_category("mug")[0]
+    assert delta_e(rendered_color(inst), _table()["instances"][inst.uuid]["lab"]) < 0.5
