@@ -33,12 +33,27 @@ class PolicyInterface:
     """The joint-space policy interface, the layout of the ``pd_joint_pos`` action: every
     arm joint (``arm_joint_names`` order, rad) then one gripper value per arm (the gripper's
     action units). ``joints`` index the robot's active joints; ``fingers`` holds each arm's
-    first finger joint (index, direction it opens); ``names`` names every dimension."""
+    first finger joint (index, direction it opens); ``names`` names every dimension;
+    ``sides`` names the arms (``""`` for a robot's only arm)."""
 
     joints: tuple[int, ...]
     fingers: tuple[tuple[int, float], ...]
     gripper: Gripper
     names: tuple[str, ...]
+    sides: tuple[str, ...] = ("",)
+
+    def parts(self) -> dict[str, tuple[int, int]]:
+        """The named slices [start, end) of the interface's vector, in its order: each arm's
+        joints (``arm``, or ``left_arm`` ... on a robot with sides), then each arm's gripper
+        (``gripper``, ``left_gripper`` ...)."""
+        if len(self.sides) != len(self.fingers):
+            raise ValueError(f"{len(self.fingers)} arms but sides {self.sides}")
+        per_arm = len(self.joints) // len(self.sides)
+        prefixes = [f"{side}_" if side else "" for side in self.sides]
+        out = {f"{p}arm": (k * per_arm, (k + 1) * per_arm) for k, p in enumerate(prefixes)}
+        grippers = len(self.joints)
+        out |= {f"{p}gripper": (grippers + k, grippers + k + 1) for k, p in enumerate(prefixes)}
+        return out
 
     def state(self, qpos) -> np.ndarray:
         """The robot's configuration ``qpos`` (..., active joints) in this interface: the
@@ -72,6 +87,8 @@ class InstructMoveAgent:
     #: it move nothing, so the solver is kept off them (``mount``).
     mount_links: ClassVar[tuple[str, ...]] = ()
     gripper: ClassVar[Gripper]
+    #: The arms' names, in arm order (one unnamed arm by default).
+    sides: ClassVar[tuple[str, ...]] = ("",)
     joint_limits: ClassVar[JointLimits]
     demo_pace: ClassVar[float]
 
@@ -162,6 +179,7 @@ class InstructMoveAgent:
             fingers=tuple(fingers),
             gripper=self.gripper,
             names=(*self.arm_joint_names, *grippers),
+            sides=tuple(self.sides),
         )
 
     def action_layout(self) -> tuple[ArmSlots, ...]:

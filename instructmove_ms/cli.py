@@ -310,12 +310,12 @@ def _cmd_export_mcap(args: argparse.Namespace) -> int:
 def _cmd_export_lerobot(args: argparse.Namespace) -> int:
     from instructmove_ms.export.lerobot import LeRobotSettings, export_lerobot
 
-    settings = LeRobotSettings(args.repo_id, args.width, args.height)
+    settings = LeRobotSettings(args.repo_id, args.width, args.height, args.format)
     report = export_lerobot(args.traj, args.out, settings, _workers(args))
     print(
         f"{len(report.written)} episodes written ({report.frames} frames, "
         f"{report.bytes / 1e6:.1f} MB in {report.seconds:.0f} s), {len(report.skipped)} already "
-        f"there -> LeRobot v3.0 dataset {args.out}"
+        f"there -> LeRobot {args.format} dataset {args.out}"
     )
     return 0
 
@@ -326,6 +326,19 @@ def _cmd_serve_replay(args: argparse.Namespace) -> int:
     policy = DatasetReplayPolicy(args.dataset, args.chunk)
     print(f"serving the replay of {args.dataset} on ws://{args.host}:{args.port}", flush=True)
     serve(policy, args.host, args.port, {"policy": "dataset replay", "dataset": args.dataset})
+    return 0
+
+
+def _cmd_serve_lerobot(args: argparse.Namespace) -> int:
+    import os
+    from pathlib import Path
+
+    from instructmove_ms import integrations
+
+    program = Path(integrations.__file__).with_name("lerobot_server.py")  # run, not imported
+    argv = [args.python, str(program), "--checkpoint", args.checkpoint]
+    argv += ["--host", args.host, "--port", str(args.port), "--device", args.device]
+    os.execv(args.python, argv)  # the server replaces this process (signals reach it)
     return 0
 
 
@@ -346,6 +359,7 @@ def _load_policy(spec: str, args: argparse.Namespace):
             control_mode=args.control_mode,
             replan_steps=args.replan_steps,
             obs_mode=args.obs_mode,
+            image_size=args.image_size,
         )
     module, _, name = spec.partition(":")
     if not name:
@@ -363,6 +377,14 @@ def _load_policy(spec: str, args: argparse.Namespace):
         return getattr(found, name)()
     except TypeError as exc:
         raise ValueError(f"policy {spec!r} cannot be made without arguments ({exc})") from None
+
+
+def _image_size(text: str) -> tuple[int, int]:
+    """``WxH`` -> (width, height)."""
+    width, sep, height = text.lower().partition("x")
+    if not (sep and width.isdigit() and height.isdigit()) or not int(width) * int(height):
+        raise argparse.ArgumentTypeError(f"image size must be WxH, e.g. 128x96, got {text!r}")
+    return int(width), int(height)
 
 
 def _eval_configs(args: argparse.Namespace):
@@ -489,6 +511,8 @@ def _cmd_perturb_sheet(args: argparse.Namespace) -> int:
 
 
 def build_parser() -> argparse.ArgumentParser:
+    from instructmove_ms.export.lerobot_formats import DEFAULT_FORMAT, FORMATS
+
     parser = argparse.ArgumentParser(prog="instructmove", description=__doc__)
     sub = parser.add_subparsers(dest="command", required=True)
     p = sub.add_parser("quickstart", help="demos, MCAP, evaluation and report end to end")
@@ -603,6 +627,13 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument(
         "--replan-steps", type=int, default=5, help="actions of a served chunk played per request"
     )
+    p.add_argument(
+        "--image-size",
+        type=_image_size,
+        default=None,
+        metavar="WxH",
+        help="camera size of the instructmove format (default 224x224; a LeRobot export's size)",
+    )
     p.add_argument("--obs-mode", default="rgb", help="observation mode (--obs-format maniskill)")
     p.add_argument("--control-mode", default="pd_joint_pos", help="control mode of a remote policy")
     p.set_defaults(func=_cmd_eval)
@@ -618,7 +649,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--jpeg-quality", type=int, default=90, help="colour image JPEG quality")
     p.set_defaults(func=_cmd_export_mcap)
     p = export.add_parser(
-        "lerobot", help="one LeRobot v3.0 dataset (parquet + MP4) from trajectories of one robot"
+        "lerobot", help="one LeRobot dataset (parquet + MP4) from trajectories of one robot"
     )
     p.add_argument(
         "--traj", required=True, action="append", help="trajectory .h5 (repeat for several)"
@@ -627,6 +658,12 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--repo-id", required=True, help="the dataset's name, e.g. me/instructmove")
     p.add_argument("--width", type=int, default=224, help="camera width")
     p.add_argument("--height", type=int, default=224, help="camera height")
+    p.add_argument(
+        "--format",
+        choices=FORMATS,
+        default=DEFAULT_FORMAT,
+        help="LeRobot format: v3.0 (lerobot >= 0.4) or v2.1 (openpi, GR00T, lerobot 0.3)",
+    )
     _add_workers(p, "rendering one episode at a time each")
     p.set_defaults(func=_cmd_export_lerobot)
     p = sub.add_parser(
@@ -637,6 +674,21 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--port", type=int, default=8000)
     p.add_argument("--chunk", type=int, default=50, help="actions per answer")
     p.set_defaults(func=_cmd_serve_replay)
+    p = sub.add_parser(
+        "serve-lerobot",
+        help="serve a LeRobot checkpoint with openpi's server (in an env with lerobot >= 0.4)",
+    )
+    p.add_argument("--checkpoint", required=True, help="a checkpoint's pretrained_model folder")
+    p.add_argument(
+        "--python",
+        default=sys.executable,
+        help="interpreter of an env with lerobot and openpi's server "
+        "(scripts/lerobot_env.sh: .cache/lerobot-env/bin/python); default: this one",
+    )
+    p.add_argument("--host", default="127.0.0.1")
+    p.add_argument("--port", type=int, default=8000)
+    p.add_argument("--device", default="cpu", help="torch device of the policy")
+    p.set_defaults(func=_cmd_serve_lerobot)
     perturb = sub.add_parser("perturb", help="perturbation axes").add_subparsers(
         dest="perturb_command", required=True
     )

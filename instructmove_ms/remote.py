@@ -18,6 +18,7 @@ naming the server if it stays away.
 
 from __future__ import annotations
 
+import dataclasses
 import time
 from contextlib import ExitStack
 from typing import Any
@@ -73,7 +74,9 @@ def unpackb(data: bytes) -> Any:
 
 class RemotePolicy:
     """Evaluator-convention policy that asks a websocket policy server for actions, in the
-    observation format ``obs_format`` (see ``obs_formats``)."""
+    observation format ``obs_format`` (see ``obs_formats``); ``image_size`` (width, height)
+    renders the ``instructmove`` format's cameras at another size than its 224 x 224 (a model
+    trained on an export of that size)."""
 
     def __init__(
         self,
@@ -85,11 +88,21 @@ class RemotePolicy:
         timeout: float = 60.0,
         retries: int = RETRIES,
         backoff: float = BACKOFF,
+        image_size: tuple[int, int] | None = None,
     ) -> None:
         check_choice("observation format", obs_format, FORMATS)
         if replan_steps < 1:
             raise ValueError(f"replan_steps must be at least 1, got {replan_steps}")
         self.uri, self.format, self.control_mode = uri, FORMATS[obs_format], control_mode
+        if image_size is not None:
+            if obs_format != "instructmove":
+                raise ValueError(
+                    f"an image size is for the instructmove format; {obs_format} sends "
+                    "openpi's 224 x 224"
+                )
+            if min(image_size) < 1:
+                raise ValueError(f"image size must be positive, got {image_size}")
+            self.format = dataclasses.replace(self.format, render=tuple(image_size))
         self.obs_mode = obs_mode if obs_format == "maniskill" else "rgb"
         self.replan_steps = replan_steps
         self.timeout, self.retries, self.backoff = timeout, retries, backoff

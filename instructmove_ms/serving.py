@@ -1,5 +1,5 @@
 """Serving a policy with openpi's own websocket server, and a reference policy to serve: the
-replay of a LeRobot dataset of ours.
+replay of a LeRobot dataset of ours (v3.0 or v2.1).
 
 ``DatasetReplayPolicy`` answers each request (the ``instructmove`` observation format, see
 ``obs_formats``) with the recorded actions from the request's frame (its ``timestamp``) of
@@ -17,10 +17,10 @@ import json
 from pathlib import Path
 
 import numpy as np
-import pandas as pd
 import pyarrow.parquet as pq
 
 from .export.lerobot import ACTION, STATE
+from .export.lerobot_formats import read_tasks
 
 CHUNK = 50  # actions per answer, as pi0's action horizon
 
@@ -43,11 +43,8 @@ class DatasetReplayPolicy:
 
     def __init__(self, root: str | Path, chunk: int = CHUNK) -> None:
         root = Path(root)
-        if not (root / "meta" / "info.json").is_file():
-            raise ValueError(f"{root}: no LeRobot dataset (meta/info.json missing)")
+        names = read_tasks(root)  # either format; refuses a folder without a dataset
         self.fps = float(json.loads((root / "meta" / "info.json").read_text())["fps"])
-        tasks = pd.read_parquet(root / "meta" / "tasks.parquet")
-        names = {int(i): str(t) for t, i in zip(tasks.index, tasks["task_index"], strict=True)}
         table = pq.read_table(root / "data").to_pandas()  # every data file
         self.chunk = chunk
         self.episodes: dict[str, list[tuple[np.ndarray, np.ndarray]]] = {}

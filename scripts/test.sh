@@ -6,7 +6,8 @@
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 bash scripts/setup.sh --dev
-bash scripts/lerobot_env.sh  # the real LeRobot, isolated, to load our exported datasets
+bash scripts/lerobot_env.sh  # the real LeRobot 0.4.4, isolated: loads v3.0, trains, serves
+bash scripts/lerobot_v21_env.sh  # lerobot 0.3.3 over it: loads v2.1 as openpi does
 py="${PYTHON:-python3}"
 "$py" -m ruff check .
 if [ "$#" -gt 0 ]; then

@@ -1,24 +1,24 @@
-"""Trajectories of one robot -> one LeRobot v3.0 dataset, for training a VLA on our demos.
+"""Trajectories of one robot -> one LeRobot dataset (v3.0 or v2.1), for training a VLA on
+our demos.
 
 Every episode of every input trajectory (several families make a multi-task dataset) is
 restored state by state and rendered by the shared replay renderer (``replay.Replayer``, the
 MCAP export's too) at ``width`` x ``height`` (224 x 224 by default). Frame ``t`` pairs the
 state before action ``t`` with that action: an episode of T actions gives T frames.
 
-Layout (LeRobot's v3.0 format; one data file and one video file per camera per episode,
-episode ``e`` in chunk ``e // 1000``, file ``e % 1000``)::
-
-    meta/info.json  meta/stats.json  meta/tasks.parquet  meta/episodes/chunk-000/file-000.parquet
-    data/chunk-000/file-000.parquet
-    videos/observation.images.<camera>/chunk-000/file-000.mp4
+Layouts (``lerobot_formats``): one data file and one video file per camera per episode, in
+LeRobot's v3.0 (the default; lerobot >= 0.4) or v2.1 (openpi, GR00T, lerobot 0.3) naming and
+``meta/`` files. Every dataset also holds GR00T's ``meta/modality.json`` and a modality
+config for its fine-tuning script (``groot``).
 
 Features: ``observation.images.<camera>`` (RGB video, AV1 in yuv420p with a keyframe every
 two frames, as LeRobot encodes), ``observation.state`` (the robot's configuration in its
 joint-space policy interface: joints in rad, then one gripper value per arm in the
 ``pd_joint_pos`` action's units), ``action`` (the recorded ``pd_joint_pos`` action, the same
-layout), ``task`` (the instruction); the episode table also holds our link to the source:
-``instructmove/source``, ``instructmove/episode_id``, ``instructmove/family``, ``/split``,
-``/seed`` and ``/spec`` (the episode spec as JSON).
+layout), ``task`` (the instruction; its index is also the column
+``annotation.human.task_description``, as GR00T reads it); the episode table also holds our
+link to the source: ``instructmove/source``, ``instructmove/episode_id``,
+``instructmove/family``, ``/split``, ``/seed`` and ``/spec`` (the episode spec as JSON).
 
 Resumable and atomic: each episode's files are written atomically and then its record in
 ``.instructmove/episodes/`` (the episode counts as done once that exists); a rerun renders
@@ -38,7 +38,6 @@ from pathlib import Path
 
 import imageio.v2 as imageio
 import numpy as np
-import pandas as pd
 import pyarrow as pa
 import pyarrow.parquet as pq
 from tqdm import tqdm
@@ -46,36 +45,46 @@ from tqdm import tqdm
 from instructmove_ms.executor import Workers
 from instructmove_ms.files import OutputLock, atomic_path, clean_stale, write_json
 
+from . import groot
 from .jobs import run_jobs
+from .lerobot_formats import (
+    DEFAULT_FORMAT,
+    FORMATS,
+    IMAGE,
+    EpisodeMeta,
+    layout,
+    write_episode_tables,
+    write_info,
+)
+from .lerobot_formats import info as format_info
 from .replay import Replayer
 from .source import EpisodeSource, Trajectory, TrajectoryError, load_trajectory
 
-CODEBASE_VERSION = "v3.0"
-CHUNK_SIZE = 1000
 DEFAULT_SIZE = 224
 STATE, ACTION = "observation.state", "action"
-IMAGE = "observation.images.{}"
-DATA_PATH = "data/chunk-{chunk_index:03d}/file-{file_index:03d}.parquet"
-VIDEO_PATH = "videos/{video_key}/chunk-{chunk_index:03d}/file-{file_index:03d}.mp4"
-EPISODES_PATH = "meta/episodes/chunk-000/file-000.parquet"
+#: The instruction's task index under the name GR00T's loader reads language from.
+ANNOTATION = "annotation.human.task_description"
 WORK = ".instructmove"  # our own records, beside the dataset
 #: How LeRobot encodes its videos (libsvtav1, yuv420p, a keyframe every 2 frames, crf 30).
 VIDEO = {"codec": "libsvtav1", "pix_fmt": "yuv420p", "g": 2, "crf": 30}
 QUANTILES = (0.01, 0.10, 0.50, 0.90, 0.99)
-INDEX_FEATURES = ("timestamp", "frame_index", "episode_index", "index", "task_index")
+INDEX_FEATURES = ("timestamp", "frame_index", "episode_index", "index", "task_index", ANNOTATION)
 
 
 @dataclass(frozen=True)
 class LeRobotSettings:
-    """The dataset's name and its camera resolution."""
+    """The dataset's name, its camera resolution and its LeRobot format (``FORMATS``)."""
 
     repo_id: str
     width: int = DEFAULT_SIZE
     height: int = DEFAULT_SIZE
+    format: str = DEFAULT_FORMAT
 
     def __post_init__(self) -> None:
         if not self.repo_id or any(c.isspace() for c in self.repo_id):
             raise ValueError(f"repo_id must be a name without spaces, got {self.repo_id!r}")
+        if self.format not in FORMATS:
+            raise ValueError(f"format must be one of {FORMATS}, got {self.format!r}")
         for name in ("width", "height"):
             value = getattr(self, name)
             if value <= 0 or value % 2:
@@ -101,10 +110,6 @@ class Entry:
     source: EpisodeSource
     start: int
     task_index: int
-
-    @property
-    def chunk(self) -> dict[str, int]:
-        return {"chunk_index": self.index // CHUNK_SIZE, "file_index": self.index % CHUNK_SIZE}
 
 
 def episode_record(out: Path, index: int) -> Path:
@@ -140,6 +145,7 @@ class EpisodeWriter:
 
     def __init__(self, trajs: tuple[Trajectory, ...], settings: LeRobotSettings, out: Path):
         self.trajs, self.settings, self.out = trajs, settings, out
+        self.layout = layout(settings.format)
         self.replayers: dict[int, Replayer] = {}
 
     def _replayer(self, traj: int) -> Replayer:
@@ -168,6 +174,7 @@ class EpisodeWriter:
             "episode_index": np.full(n, entry.index, dtype=np.int64),
             "index": entry.start + np.arange(n, dtype=np.int64),
             "task_index": np.full(n, entry.task_index, dtype=np.int64),
+            ANNOTATION: np.full(n, entry.task_index, dtype=np.int64),
         }
         size = self._write_data(entry, columns)
         stats = {k: _stats(np.asarray(v).reshape(n, -1), axes=(0,)) for k, v in columns.items()}
@@ -184,6 +191,7 @@ class EpisodeWriter:
                 "task": spec["instruction"],
                 "fps": fps,
                 "names": list(interface.names),
+                "parts": {name: list(span) for name, span in interface.parts().items()},
                 "cameras": sorted(images),
                 "stats": stats,
                 "instructmove/source": self.trajs[entry.traj].path.name,
@@ -204,14 +212,14 @@ class EpisodeWriter:
                 arrays[name] = pa.FixedSizeListArray.from_arrays(flat, values.shape[1])
             else:
                 arrays[name] = pa.array(values)
-        path = self.out / DATA_PATH.format(**entry.chunk)
+        path = self.out / self.layout.data_file(entry.index)
         with atomic_path(path) as tmp:
             pq.write_table(pa.table(arrays), tmp)
         return path.stat().st_size
 
     def _write_video(self, entry: Entry, key: str, frames: np.ndarray, fps: float) -> int:
         os.environ.setdefault("SVT_LOG", "1")  # the AV1 encoder's banner: errors only
-        path = self.out / VIDEO_PATH.format(video_key=key, **entry.chunk)
+        path = self.out / self.layout.video_file(entry.index, key)
         params = ["-g", str(VIDEO["g"]), "-crf", str(VIDEO["crf"]), "-preset", "8"]
         with (
             atomic_path(path) as tmp,
@@ -289,6 +297,7 @@ def _export(
         "repo_id": settings.repo_id,
         "width": settings.width,
         "height": settings.height,
+        "format": settings.format,
         "sources": [{"file": t.path.name, "episodes": len(t.episodes)} for t in trajs],
     }
     stamp = out / WORK / "export.json"
@@ -354,57 +363,26 @@ def _features(record: dict, settings: LeRobotSettings) -> dict:
 def _finalize(
     out: Path, trajs: list[Trajectory], entries: list[Entry], tasks: list[str], settings
 ) -> None:
-    """Write ``meta/``: info, tasks, the episode table and the aggregated statistics."""
+    """Write ``meta/``: the episode and task tables, the statistics, GR00T's modality files
+    and, last, the info."""
     records = [json.loads(episode_record(out, e.index).read_text()) for e in entries]
     fps = records[0]["fps"]
-    rows = []
-    for entry, record in zip(entries, records, strict=True):
-        row = {
-            "episode_index": entry.index,
-            "tasks": [record["task"]],
-            "length": record["length"],
-            "data/chunk_index": entry.chunk["chunk_index"],
-            "data/file_index": entry.chunk["file_index"],
-            "dataset_from_index": entry.start,
-            "dataset_to_index": entry.start + record["length"],
-        }
-        for cam in record["cameras"]:
-            key = IMAGE.format(cam)
-            row.update(
-                {
-                    f"videos/{key}/chunk_index": entry.chunk["chunk_index"],
-                    f"videos/{key}/file_index": entry.chunk["file_index"],
-                    f"videos/{key}/from_timestamp": 0.0,
-                    f"videos/{key}/to_timestamp": record["length"] / fps,
-                }
-            )
-        row.update({"meta/episodes/chunk_index": 0, "meta/episodes/file_index": 0})
-        for feature, stats in record["stats"].items():
-            row.update({f"stats/{feature}/{k}": v for k, v in stats.items()})
-        row.update({k: v for k, v in record.items() if k.startswith("instructmove/")})
-        rows.append(row)
-    with atomic_path(out / EPISODES_PATH) as tmp:
-        pq.write_table(pa.Table.from_pylist(rows), tmp)
-    with atomic_path(out / "meta" / "tasks.parquet") as tmp:
-        pd.DataFrame({"task_index": range(len(tasks))}, index=pd.Index(tasks)).to_parquet(tmp)
+    episodes = [EpisodeMeta(e.index, e.start, r) for e, r in zip(entries, records, strict=True)]
+    write_episode_tables(out, settings.format, episodes, tasks, fps)
     write_json(out / "meta" / "stats.json", _aggregate([r["stats"] for r in records]), indent=2)
-    total = sum(r["length"] for r in records)
-    info = {
-        "codebase_version": CODEBASE_VERSION,
+    groot.write_modality(out, records[0], settings)
+    data = {
+        "codebase_version": settings.format,
         "robot_type": trajs[0].env_kwargs.get("robot_uids"),
         "total_episodes": len(entries),
-        "total_frames": total,
+        "total_frames": sum(r["length"] for r in records),
         "total_tasks": len(tasks),
-        "chunks_size": CHUNK_SIZE,
-        "data_files_size_in_mb": 100,
-        "video_files_size_in_mb": 200,
         "fps": fps,
         "splits": {"train": f"0:{len(entries)}"},
-        "data_path": DATA_PATH,
-        "video_path": VIDEO_PATH,
-        "features": _features(records[0], settings),
     }
-    write_json(out / "meta" / "info.json", info, indent=4)  # last: the dataset is complete
+    data |= format_info(settings.format, len(entries), len(records[0]["cameras"]))
+    data["features"] = _features(records[0], settings)
+    write_info(out, data)
 
 
 def _aggregate(episodes: list[dict]) -> dict:
