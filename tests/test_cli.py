@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import json
 
+import pytest
+
 from instructmove_ms.cli import main
 
 
@@ -72,3 +74,20 @@ def test_assets_rehash_names_an_unknown_snapshot(capsys):
     assert main(["assets", "rehash", "nosuch"]) == 2
     err = capsys.readouterr().err
     assert "unknown snapshot 'nosuch'" in err and "'default'" in err
+
+
+@pytest.mark.parametrize("size", ["128", "128x", "0x96", "axb"])
+def test_a_bad_image_size_is_a_clear_error(size, capsys):
+    argv = ["eval", "--task", "PickCategory-InstructMove", "--policy", "ws://127.0.0.1:9"]
+    with pytest.raises(SystemExit) as exit_:
+        main([*argv, "--out", "x", "--image-size", size])
+    assert exit_.value.code == 2
+    assert f"image size must be WxH, e.g. 128x96, got {size!r}" in capsys.readouterr().err
+
+
+def test_export_lerobot_names_the_formats_it_writes(capsys):
+    argv = ["export", "lerobot", "--traj", "t.h5", "--out", "x", "--repo-id", "me/x"]
+    with pytest.raises(SystemExit):
+        main([*argv, "--format", "v2.0"])
+    err = capsys.readouterr().err
+    assert "'v2.0'" in err and "'v3.0'" in err and "'v2.1'" in err

@@ -142,3 +142,33 @@ def test_formats_send_the_documented_keys_and_their_actions_hold_the_robot(robot
     assert len(requests) == 12 and np.abs(last - first).max() < 0.02, "the robot held still"
     assert summary["policy"]["requests"] == 12
     assert summary["policy"]["infer_ms"]["median"] == 1.5
+
+
+def test_the_instructmove_format_renders_at_the_image_size_asked_for(tmp_path):
+    """A model trained on an export of another size gets its cameras at that size."""
+    requests = []
+
+    def handler(ws):
+        ws.send(packb({}))
+        for message in ws:
+            requests.append(unpackb(message))
+            ws.send(packb({"actions": requests[-1]["observation.state"][None]}))
+
+    config = heldout.evaluator_config("PickCategory-InstructMove", "franka", "seen", episodes=1)
+    config = dataclasses.replace(config, max_episode_steps=2)
+    with serve(handler, "127.0.0.1", 0) as server:
+        threading.Thread(target=server.serve_forever, daemon=True).start()
+        uri = f"ws://127.0.0.1:{server.socket.getsockname()[1]}"
+        policy = RemotePolicy(uri, replan_steps=1, image_size=(128, 96))
+        evaluate_config(policy, config, tmp_path)
+        policy.close()
+        server.shutdown()
+    shapes = _shapes(requests[0])
+    for camera in ("ext1_camera", "ext2_camera", "wrist_camera"):
+        assert shapes[f"observation.images.{camera}"] == ((96, 128, 3), "uint8")
+    assert requests[0]["observation.images.ext1_camera"].std() > 5, "an image, not a blank"
+
+
+def test_an_image_size_is_refused_for_the_fixed_size_formats():
+    with pytest.raises(ValueError, match="instructmove format; droid sends openpi's 224"):
+        RemotePolicy("ws://127.0.0.1:9", obs_format="droid", image_size=(128, 96))
