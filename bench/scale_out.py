@@ -9,7 +9,11 @@ One worker runs a short and a twice as long job: their difference gives the cost
 that cost spread over N machines' CPUs at the Ray efficiency measured here. Demos:
 PickCategory with the Franka, shards of 4. Evaluation: the random policy with rgb
 observations from the default cameras (the simulation and rendering a served VLA gets,
-without its inference), one episode per shard. Overhead: empty shards."""
+without its inference), one episode per shard. Overhead: empty shards.
+
+Threads: each worker runs torch with its share of the cores (``executor``); the evaluation
+is also run as before that, every worker (and the one-process run) with torch's default
+pool, to show what sharing the cores gains."""
 
 from __future__ import annotations
 
@@ -17,11 +21,15 @@ import argparse
 import os
 import tempfile
 import time
+from collections.abc import Iterator
+from contextlib import contextmanager
 from pathlib import Path
 
 import ray
+import torch
 
 import instructmove_ms  # noqa: F401
+from instructmove_ms import executor
 from instructmove_ms.demos.generate import generate
 from instructmove_ms.evaluation import evaluate
 from instructmove_ms.executor import Workers
@@ -45,6 +53,18 @@ def _eval_seconds(workers: Workers, n: int) -> float:
         start = time.perf_counter()
         evaluate(policy, TASK, "seen", Path(tmp), ROBOT, episodes=n, workers=workers)
         return time.perf_counter() - start
+
+
+@contextmanager
+def default_threads() -> Iterator[None]:
+    """Workers as before they shared the cores: torch's default pool in every process."""
+    saved = executor.share_of_cores, executor.IN_PROCESS_THREADS
+    executor.share_of_cores = lambda processes: executor.cores()
+    executor.IN_PROCESS_THREADS = torch.get_num_threads()
+    try:
+        yield
+    finally:
+        executor.share_of_cores, executor.IN_PROCESS_THREADS = saved
 
 
 def _empty(shard: int, tick) -> int:
@@ -95,6 +115,14 @@ def main() -> None:
             for m in MACHINES
         )
         print(f"projected for {units} {unit}s with Ray: {projected}")
+        if job == "eval":
+            with default_threads():
+                before = {k: measure(Workers(k), 2 * n) for k in (1, 2)}
+            print(
+                f"eval  torch's default threads (before): 1 worker {before[1]:.0f} s, 2 workers "
+                f"{before[2]:.0f} s, speed-up {before[1] / before[2]:.2f}x; with shared cores "
+                f"1 worker {long:.0f} s ({before[1] / long:.2f}x faster)"
+            )
     for name, workers in (("2 workers", Workers(2)), ("Ray", Workers(ray=""))):
         print(f"driver overhead per shard, {name}: {_overhead_ms(workers, 200):.2f} ms")
     ray.shutdown()

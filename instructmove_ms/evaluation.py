@@ -29,6 +29,14 @@ run batches in parallel, each worker with its own env and its own copy of the po
 (pickled into it: a served policy connects again from there). Rows are appended as batches
 finish and ``episodes.jsonl`` is rewritten in the config's order at the end, so the output
 equals a one-process run's.
+
+Observations on demand: a policy that holds actions it will play without looking (a chunked
+or served policy) says how many with ``held_actions()``; while it holds any, the env steps
+without computing its observation (no camera is rendered) and the policy gets ``None``. The
+observation is computed on the step before the policy asks again, as the env always does, so
+physics, per-step info, scores and videos are those of a run that renders every step. A
+policy without ``held_actions`` gets every step's observation but the last's, which no
+policy reads.
 """
 
 from __future__ import annotations
@@ -39,6 +47,8 @@ import inspect
 import json
 import re
 import traceback
+from collections.abc import Iterator
+from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -96,6 +106,29 @@ def _sub_info(info: dict, i: int) -> dict:
     }
 
 
+def reads_next_observation(policy: Any) -> bool:
+    """Whether ``policy`` will read the observation the next step gives (see the module
+    docstring: not while it holds actions)."""
+    held = getattr(policy, "held_actions", None)
+    return held is None or held() == 0
+
+
+@contextmanager
+def observations_off(env: gym.Env) -> Iterator[None]:
+    """Steps of ``env`` inside the block compute no observation (ManiSkill's ``"none"``
+    observation mode: no sensor is captured, nothing is rendered); they return ``{}``."""
+    u = env.unwrapped
+    struct = getattr(u, "obs_mode_struct", None)  # None: not a ManiSkill env, steps as usual
+    if struct is None or struct.state:  # a flattened state part expects the whole observation
+        yield
+        return
+    mode, u._obs_mode = u._obs_mode, "none"
+    try:
+        yield
+    finally:
+        u._obs_mode = mode
+
+
 @dataclass
 class _Runner:
     """Runs batches of episodes (one per sub-scene) and scores them."""
@@ -134,15 +167,25 @@ class _Runner:
         else:
             guarded("reset", self.policy.reset, obs)
         info: dict = {}
-        for _ in range(self.horizon):
+        for t in range(self.horizon):
             action = check_action(guarded("act", self.policy.act, obs), dim, u.num_envs)
-            obs, _, _, _, info = self.env.step(action)
+            final = t + 1 == self.horizon  # no policy reads the last step's observation
+            obs, info = self._step(action, not final and reads_next_observation(self.policy))
             self._frames(frames)
             for i, episode in enumerate(batch):
                 if first[i] is None and episode.spec.target >= 0 and bool(info["success"][i]):
                     first[i] = _sub_info(info, i)
         for i in range(len(batch)):
             last[i] = _sub_info(info, i)
+
+    def _step(self, action: Any, observe: bool) -> tuple[Any, dict]:
+        """(observation, info) of a step; the observation is None unless ``observe``."""
+        if observe:
+            obs, _, _, _, info = self.env.step(action)
+            return obs, info
+        with observations_off(self.env):
+            _, _, _, _, info = self.env.step(action)
+        return None, info
 
     def run(self, batch: list[ConfigEpisode]) -> list[dict]:
         """The result rows of ``batch`` (at most one episode per sub-scene)."""

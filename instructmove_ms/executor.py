@@ -15,6 +15,13 @@ first, Ray's are cancelled). Shards write into the job's output folder (atomical
 ``files``), so on a cluster that folder must be on a file system every node sees at the
 same path: :meth:`Workers.run` checks it with a probe task and says so when it is not.
 
+Workers share the machine: each local worker process runs torch's intra-op pool (and the
+OpenMP and BLAS pools it starts, through their environment variables) with its share of the
+cores, one thread per worker on a machine of as many cores as workers, and a Ray task with its
+``cpus``; without it, two workers on two cores each start two threads and oversubscribe them.
+A job run in this process uses ``IN_PROCESS_THREADS`` for its duration (the fastest measured
+for one env stepping and rendering; ``bench/scale_out.py``).
+
 Ray is optional (``pip install 'instructmove-ms[ray]'``) and imported only for ``ray=``.
 Ray's worker processes are reused across tasks, so state a shard builds once per process
 (:func:`worker_state`, e.g. an env that renders) serves the later shards of the same job.
@@ -32,6 +39,7 @@ from collections import Counter
 from collections.abc import Callable, Iterator
 from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
 from concurrent.futures.process import BrokenProcessPool
+from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -40,6 +48,10 @@ Tick = Callable[[Any], None]
 ShardFn = Callable[[Any, Tick], Any]
 RAY_INSTALL = "pip install 'instructmove-ms[ray]'"
 _DONE = "__done__"  # ends a progress queue
+#: Thread pools a worker's share of the cores sets, before they start.
+THREAD_VARIABLES = ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS")
+#: torch's intra-op threads for a job run in this process.
+IN_PROCESS_THREADS = 1
 
 
 class WorkerLost(RuntimeError):
@@ -127,15 +139,63 @@ def release_state() -> None:
         getattr(state, "close", lambda: None)()
 
 
+def cores() -> int:
+    """The CPU cores this process may run on."""
+    try:
+        return len(os.sched_getaffinity(0))
+    except AttributeError:  # not on Linux
+        return os.cpu_count() or 1
+
+
+def share_of_cores(processes: int) -> int:
+    """Threads each of ``processes`` workers gets: its share of the cores, at least one."""
+    return max(1, cores() // processes)
+
+
+@contextmanager
+def torch_threads(threads: int) -> Iterator[None]:
+    """torch's intra-op pool at ``threads`` inside the block."""
+    import torch
+
+    before = torch.get_num_threads()
+    torch.set_num_threads(threads)
+    try:
+        yield
+    finally:
+        torch.set_num_threads(before)
+
+
+@contextmanager
+def children_threads(threads: int) -> Iterator[None]:
+    """Processes started inside the block get ``threads`` in their OpenMP and BLAS pools
+    (a variable the user set is kept)."""
+    saved = {name: os.environ.get(name) for name in THREAD_VARIABLES}
+    os.environ.update({name: str(threads) for name, v in saved.items() if v is None})
+    try:
+        yield
+    finally:
+        for name, value in saved.items():
+            if value is None:
+                os.environ.pop(name, None)
+
+
 def _run_here(fn: ShardFn, shards: list, tick: Tick) -> Iterator[tuple[Any, Any]]:
     try:
-        for shard in shards:
-            yield shard, fn(shard, tick)
+        with torch_threads(IN_PROCESS_THREADS):
+            for shard in shards:
+                yield shard, fn(shard, tick)
     finally:
         release_state()
 
 
 # -- local spawned processes (SAPIEN and torch do not survive a fork) -------------------
+def set_worker_threads(threads: int) -> None:
+    """A worker process's start: torch's intra-op pool at its share of the cores."""
+    import torch
+
+    torch.set_num_threads(threads)
+
+
 def _call(fn: ShardFn, shard: Any, sink: Any) -> Any:
     return fn(shard, sink.put)
 
@@ -153,13 +213,16 @@ def _run_local(
     ctx = mp.get_context("spawn")
     pending = dict(enumerate(shards))
     tries: Counter[int] = Counter()
-    with ctx.Manager() as manager:
+    threads = share_of_cores(workers.processes)
+    with ctx.Manager() as manager, children_threads(threads):
         sink = manager.Queue()
         listener = threading.Thread(target=_drain, args=(sink, tick, lambda q: q.get()))
         listener.start()
         try:
             while pending:
-                pool = ProcessPoolExecutor(min(workers.processes, len(pending)), ctx)
+                pool = ProcessPoolExecutor(
+                    min(workers.processes, len(pending)), ctx, set_worker_threads, (threads,)
+                )
                 try:
                     futures = {pool.submit(_call, fn, s, sink): i for i, s in pending.items()}
                     while futures:
@@ -186,7 +249,8 @@ def _run_local(
 
 
 # -- Ray ---------------------------------------------------------------------------------
-def _ray_shard(fn: ShardFn, shard: Any, sink: Any) -> Any:
+def _ray_shard(fn: ShardFn, shard: Any, sink: Any, threads: int) -> Any:
+    set_worker_threads(threads)  # Ray sets OMP_NUM_THREADS to the task's CPUs itself
     return fn(shard, sink.put_nowait)
 
 
@@ -236,7 +300,8 @@ def _run_ray(
     task = ray.remote(num_cpus=workers.cpus, num_gpus=workers.gpus, max_retries=workers.retries)(
         _ray_shard
     )
-    refs = {task.remote(fn, shard, sink): shard for shard in shards}
+    threads = max(1, int(workers.cpus))
+    refs = {task.remote(fn, shard, sink, threads): shard for shard in shards}
     waiting = list(refs)
     try:
         while waiting:

@@ -173,6 +173,11 @@ class RemotePolicy:
     def reset(self, obs) -> None:
         self.chunk, self.steps = [], 0
 
+    def held_actions(self) -> int:
+        """Actions of the last chunk still to play: the next ``act`` reads no observation
+        while there are any."""
+        return len(self.chunk)
+
     def act(self, obs) -> np.ndarray:
         if not self.chunk:
             time_s = self.steps / self.fps

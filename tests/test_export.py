@@ -232,3 +232,24 @@ def test_failed_conversion_leaves_no_partial_file(tmp_path):
     with pytest.raises(RuntimeError, match="renderer died"):
         write_episode(path, metadata, rig, np.zeros((1, 1)), frames())
     assert list(tmp_path.iterdir()) == []
+
+
+def test_exports_render_each_recorded_state_once_per_camera(source, tmp_path, monkeypatch):
+    """MCAP (every state) and LeRobot (the state before each action) capture the cameras
+    once per written frame; the replay that measures efforts renders nothing."""
+    from mani_skill.envs.sapien_env import BaseEnv
+
+    from instructmove_ms.export.lerobot import LeRobotSettings, export_lerobot
+
+    captures, capture = [0], BaseEnv.capture_sensor_data
+
+    def counted(self, *args, **kwargs):
+        captures[0] += 1
+        return capture(self, *args, **kwargs)
+
+    monkeypatch.setattr(BaseEnv, "capture_sensor_data", counted)
+    export_trajectory(source, tmp_path / "mcap", settings=ExportSettings(SIZE, SIZE))
+    assert captures[0] == 2 * (STEPS + 1)  # two episodes of STEPS actions
+    captures[0] = 0
+    export_lerobot([source], tmp_path / "lerobot", LeRobotSettings("me/x", SIZE, SIZE))
+    assert captures[0] == 2 * STEPS

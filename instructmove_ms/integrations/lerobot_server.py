@@ -17,41 +17,49 @@ chunk (its first ``n_action_steps``) and its post-processor (unnormalisation).
 from __future__ import annotations
 
 import argparse
+import importlib
 import logging
 from pathlib import Path
+from types import ModuleType
 
 import numpy as np
 
-try:
-    import torch
-    import torch.nn.functional as F  # noqa: N812
-    from lerobot.configs.policies import PreTrainedConfig
-    from lerobot.policies.factory import get_policy_class, make_pre_post_processors
-    from lerobot.policies.utils import prepare_observation_for_inference
-    from openpi_client import base_policy
-    from openpi_server import websocket_policy_server
-except ImportError as exc:
-    raise SystemExit(
-        f"serving a LeRobot checkpoint needs lerobot >= 0.4 and openpi's server ({exc}); run it "
-        "with the Python of an environment that has them (scripts/lerobot_env.sh builds one)"
-    ) from None
-
-#: Request keys that are not the policy's observation.
-CONTROL_KEYS = ("prompt", "timestamp")
+#: What the server imports, found at start (importing this module needs none of them).
+MODULES = {
+    "torch": "torch",
+    "functional": "torch.nn.functional",
+    "policies": "lerobot.configs.policies",
+    "factory": "lerobot.policies.factory",
+    "utils": "lerobot.policies.utils",
+    "server": "openpi_server.websocket_policy_server",
+}
 
 
-class CheckpointPolicy(base_policy.BasePolicy):
-    """A LeRobot policy checkpoint answering openpi requests with action chunks."""
+def _modules() -> dict[str, ModuleType]:
+    try:
+        return {name: importlib.import_module(path) for name, path in MODULES.items()}
+    except ImportError as exc:
+        raise SystemExit(
+            f"serving a LeRobot checkpoint needs lerobot >= 0.4 and openpi's server ({exc}); "
+            "run it with the Python of an environment that has them (scripts/lerobot_env.sh "
+            "builds one)"
+        ) from None
+
+
+class CheckpointPolicy:
+    """A LeRobot policy checkpoint answering openpi requests with action chunks (openpi's
+    server calls ``infer``)."""
 
     def __init__(self, checkpoint: Path, device: str = "cpu") -> None:
         if not (checkpoint / "config.json").is_file():
             raise SystemExit(f"{checkpoint}: not a LeRobot checkpoint (config.json missing)")
-        self.config = PreTrainedConfig.from_pretrained(checkpoint)
+        m = self.m = _modules()
+        self.config = m["policies"].PreTrainedConfig.from_pretrained(checkpoint)
         self.config.device = device
-        self.policy = get_policy_class(self.config.type).from_pretrained(checkpoint)
+        self.policy = m["factory"].get_policy_class(self.config.type).from_pretrained(checkpoint)
         self.policy.to(device).eval()
-        self.device = torch.device(device)
-        self.pre, self.post = make_pre_post_processors(
+        self.device = m["torch"].device(device)
+        self.pre, self.post = m["factory"].make_pre_post_processors(
             self.config,
             pretrained_path=str(checkpoint),
             preprocessor_overrides={"device_processor": {"device": device}},
@@ -64,14 +72,14 @@ class CheckpointPolicy(base_policy.BasePolicy):
         if missing:
             raise ValueError(f"the request lacks {missing}; it has {sorted(obs)}")
         raw = {k: np.array(v) for k, v in obs.items() if k in self.features}  # writable
+        torch, resize = self.m["torch"], self.m["functional"].interpolate
+        prepare = self.m["utils"].prepare_observation_for_inference
         with torch.inference_mode():
-            batch = prepare_observation_for_inference(raw, self.device, str(obs.get("prompt", "")))
+            batch = prepare(raw, self.device, str(obs.get("prompt", "")))
             for key, feature in self.features.items():
                 shape = tuple(feature.shape)  # (C, H, W) for an image
                 if len(shape) == 3 and tuple(batch[key].shape[1:]) != shape:
-                    batch[key] = F.interpolate(
-                        batch[key], size=shape[1:], mode="bilinear", antialias=True
-                    )
+                    batch[key] = resize(batch[key], size=shape[1:], mode="bilinear", antialias=True)
             batch = self.pre(batch)
             chunk = self.policy.predict_action_chunk(batch)[:, : self.steps]
             actions = self.post(chunk)
@@ -92,7 +100,7 @@ def main(argv: list[str] | None = None) -> None:
     policy = CheckpointPolicy(args.checkpoint, args.device)
     metadata = {"policy": policy.config.type, "checkpoint": str(args.checkpoint)}
     print(f"serving {args.checkpoint} on ws://{args.host}:{args.port}", flush=True)
-    server = websocket_policy_server.WebsocketPolicyServer(policy, args.host, args.port, metadata)
+    server = policy.m["server"].WebsocketPolicyServer(policy, args.host, args.port, metadata)
     server.serve_forever()
 
 
