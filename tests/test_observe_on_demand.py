@@ -68,7 +68,7 @@ def _digest(obs) -> str:
 
 
 def _run(policy: Chunked, tmp_path, monkeypatch) -> tuple[list[dict], list[dict], int]:
-    """Rows, per-step flags and renders of ``policy`` on two stored episodes."""
+    """Rows, per-step flags and renders of ``policy`` on a stored episode."""
     steps: list[dict] = []
     renders = [0]
 
@@ -83,7 +83,7 @@ def _run(policy: Chunked, tmp_path, monkeypatch) -> tuple[list[dict], list[dict]
 
     monkeypatch.setattr(evaluation._Runner, "_step", recording_step)
     monkeypatch.setattr(BaseEnv, "_get_obs_with_sensor_data", counted_render)
-    config = heldout.evaluator_config("PickCategory-InstructMove", "franka", "seen", episodes=2)
+    config = heldout.evaluator_config("PickCategory-InstructMove", "franka", "seen", episodes=1)
     evaluate_config(policy, config, tmp_path)
     rows = [json.loads(line) for line in (tmp_path / "episodes.jsonl").open()]
     return rows, steps, renders[0]
@@ -97,14 +97,18 @@ def test_rows_and_per_step_flags_match_a_run_that_renders_every_step(
     rows, steps, renders = _run(every, tmp_path / "every", monkeypatch)
     rows_d, steps_d, renders_d = _run(on_demand, tmp_path / "on_demand", monkeypatch)
     assert rows_d == rows
-    assert steps_d == steps and len(steps) == 2 * heldout.evaluator_config(
-        "PickCategory-InstructMove", "franka", "seen", episodes=1
-    ).max_episode_steps
+    assert (
+        steps_d == steps
+        and len(steps)
+        == heldout.evaluator_config(
+            "PickCategory-InstructMove", "franka", "seen", episodes=1
+        ).max_episode_steps
+    )
     assert any(row["success"] for row in rows), "the oracle lifts: the flags move"
     assert on_demand.seen == every.seen, "each query saw the observation of the same step"
-    fixed = renders - len(steps) + 2  # the env's first observation and each reset's
+    fixed = renders - len(steps) + 1  # the env's first observation and the reset's
     if obs_mode == "rgb":
-        assert fixed in (2, 3), renders  # every step renders but each episode's last
-        assert renders_d == fixed + len(every.seen) - 2, "one render per query, no other"
+        assert fixed in (1, 2), renders  # every step renders but the episode's last
+        assert renders_d == fixed + len(every.seen) - 1, "one render per query, no other"
     else:
         assert renders == renders_d == 0
