@@ -49,7 +49,6 @@ from . import groot
 from .jobs import run_jobs
 from .lerobot_formats import (
     DEFAULT_FORMAT,
-    FORMATS,
     IMAGE,
     EpisodeMeta,
     layout,
@@ -83,8 +82,7 @@ class LeRobotSettings:
     def __post_init__(self) -> None:
         if not self.repo_id or any(c.isspace() for c in self.repo_id):
             raise ValueError(f"repo_id must be a name without spaces, got {self.repo_id!r}")
-        if self.format not in FORMATS:
-            raise ValueError(f"format must be one of {FORMATS}, got {self.format!r}")
+        layout(self.format)  # a format we write, or a clear error
         for name in ("width", "height"):
             value = getattr(self, name)
             if value <= 0 or value % 2:
