@@ -1,0 +1,7 @@
+"""``python -m instructmove_ms.cli``: the ``instructmove`` command."""
+
+import sys
+
+from instructmove_ms.cli import main
+
+sys.exit(main())

@@ -1,0 +1,94 @@
+"""``instructmove episodes``: the held-out evaluation episode sets."""
+
+from __future__ import annotations
+
+import argparse
+import json
+
+from instructmove_ms.cli.common import _add_group
+
+
+def _cmd_episodes_write(args: argparse.Namespace) -> int:
+    from pathlib import Path
+
+    import gymnasium as gym
+    from tqdm import tqdm
+
+    import instructmove_ms  # noqa: F401  (registration)
+    from instructmove_ms import heldout
+    from instructmove_ms.splits import EVAL_SPLITS
+    from instructmove_ms.tasks import TASKS
+
+    tasks = [args.task] if args.task else list(TASKS)
+    out = Path(args.out) if args.out else None
+    for env_id in tasks:
+        for robot in [args.robot] if args.robot else TASKS[env_id].supported_robots:
+            for split in EVAL_SPLITS:
+                env = gym.make(env_id, robot_uids=robot, split=split, obs_mode="state")
+                specs = list(
+                    tqdm(
+                        heldout.generate_set(env, args.n),
+                        total=args.n,
+                        desc=f"{env_id} {robot} {split}",
+                        unit="episode",
+                    )
+                )
+                env.close()
+                path = heldout.write_set(heldout.set_path(env_id, robot, split, out), specs)
+                tqdm.write(f"{len(specs)} episodes -> {path}")
+    return 0
+
+
+def _cmd_episodes_show(args: argparse.Namespace) -> int:
+    from instructmove_ms import heldout
+    from instructmove_ms.tasks import TASKS
+
+    robot = args.robot or TASKS[args.task].default_robot
+    specs = heldout.load_set(args.task, robot, args.split)
+    if not 0 <= args.index < len(specs):
+        raise ValueError(f"--index {args.index} outside the set's 0..{len(specs) - 1}")
+    print(json.dumps(specs[args.index].to_dict(), indent=2))
+    return 0
+
+
+def _cmd_episodes_sheet(args: argparse.Namespace) -> int:
+    from pathlib import Path
+
+    from tqdm import tqdm
+
+    from instructmove_ms.episode_sheet import episode_sheet
+    from instructmove_ms.splits import EVAL_SPLITS
+    from instructmove_ms.tasks import TASKS
+    from instructmove_ms.validation import check_choice
+
+    check_choice("task", args.task, TASKS)
+    robot = args.robot or TASKS[args.task].default_robot
+    for split in tqdm([args.split] if args.split else EVAL_SPLITS, desc="sheets", unit="sheet"):
+        name = f"{TASKS[args.task].family}_{robot}_{split}.png"
+        tqdm.write(str(episode_sheet(args.task, robot, split, Path(args.out) / name, args.n)))
+    return 0
+
+
+def add_parsers(sub: argparse._SubParsersAction) -> None:
+    episodes_sub = _add_group(sub, "episodes", "held-out evaluation episode sets")
+    p = episodes_sub.add_parser("write", help="sample and store the held-out sets")
+    p.add_argument("--task", default=None, help="one env id (default: every family)")
+    p.add_argument("--robot", default=None, help="one robot (default: every supported one)")
+    p.add_argument("--n", type=int, default=100, help="episodes per set")
+    p.add_argument("--out", default=None, help="folder (default: the package's own)")
+    p.set_defaults(func=_cmd_episodes_write)
+    p = episodes_sub.add_parser("show", help="print one stored held-out episode spec")
+    p.add_argument("--task", default="PickCategory-InstructMove")
+    p.add_argument("--robot", default=None)
+    p.add_argument("--split", default="seen")
+    p.add_argument("--index", type=int, default=0)
+    p.set_defaults(func=_cmd_episodes_show)
+    p = episodes_sub.add_parser(
+        "sheet", help="contact sheet PNGs of stored episodes with their instructions"
+    )
+    p.add_argument("--task", required=True, help="env id")
+    p.add_argument("--robot", default=None, help="default: the family's robot")
+    p.add_argument("--split", default=None, help="one split (default: every one)")
+    p.add_argument("--n", type=int, default=20, help="episodes per sheet")
+    p.add_argument("--out", required=True, help="folder for <family>_<robot>_<split>.png")
+    p.set_defaults(func=_cmd_episodes_sheet)
