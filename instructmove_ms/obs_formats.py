@@ -21,6 +21,12 @@ sides, so that a model trained on one convention is served without a transform o
   opening's fraction, 0 closed, 1 open) and ``prompt``; actions in that order and those units.
 - ``maniskill``: the env's own nested observation under ``observation`` (as ManiSkill gives
   it, one sub-scene) and ``prompt``; actions are the env's.
+- ``groot`` (GR00T N1.6/N1.7's policy server, ``integrations.groot``): ``video`` (camera ->
+  (1, 1, H, W, 3) uint8 at the export's 224 x 224), ``state`` (part -> (1, 1, D) float32, the
+  parts of the export's ``meta/modality.json``: ``arm``, ``gripper`` or ``left_arm`` ...
+  ``right_gripper``) and ``language`` (``annotation.human.task_description`` -> [[text]]);
+  the server answers part -> (1, horizon, D) in the same units, put back in the interface's
+  order.
 """
 
 from __future__ import annotations
@@ -35,6 +41,8 @@ import torch
 from .agents.interface import PolicyInterface
 
 SIZE = 224  # pixels of every image the named formats send (square)
+#: GR00T's language key for the instruction (the LeRobot export's annotation column).
+GROOT_LANGUAGE = "annotation.human.task_description"
 #: Camera resolution the letterboxed formats render at: the cameras' own 16:9.
 WIDE = (320, 180)
 
@@ -77,6 +85,11 @@ class ObservationFormat:
     def decode(self, actions: np.ndarray, interface: PolicyInterface) -> np.ndarray:
         """(K, our action dim) from the server's (K, its dim)."""
         return actions
+
+    def actions(self, reply: dict, interface: PolicyInterface) -> np.ndarray:
+        """(K, our action dim) from the server's reply (its ``actions``: one or a chunk)."""
+        actions = np.asarray(reply["actions"], dtype=np.float32)
+        return self.decode(actions.reshape(-1, actions.shape[-1]), interface)
 
     @staticmethod
     def images(obs: dict) -> dict[str, np.ndarray]:
@@ -162,6 +175,33 @@ class ManiSkill(ObservationFormat):
         return {"observation": unbatch(obs), "prompt": prompt}
 
 
+class Groot(ObservationFormat):
+    def encode(self, obs: dict, prompt: str, interface: PolicyInterface, time: float) -> dict:
+        state = self.state(obs, interface)
+        return {
+            "video": {cam: image[None, None] for cam, image in self.images(obs).items()},
+            "state": {p: state[None, None, a:b] for p, (a, b) in interface.parts().items()},
+            "language": {GROOT_LANGUAGE: [[prompt]]},
+        }
+
+    def actions(self, reply: dict, interface: PolicyInterface) -> np.ndarray:
+        chunk, parts = reply["actions"], interface.parts()
+        missing = sorted(set(parts) - set(chunk))
+        if missing:
+            raise ValueError(f"the GR00T server's actions lack {missing}; it sent {sorted(chunk)}")
+        arrays = {p: np.asarray(chunk[p], dtype=np.float32) for p in parts}
+        horizon = arrays[next(iter(parts))].shape[1:2]
+        out = np.zeros((*horizon, max(b for _, b in parts.values())), dtype=np.float32)
+        for p, (a, b) in parts.items():
+            if arrays[p].shape != (1, *horizon, b - a):
+                raise ValueError(
+                    f"GR00T action part {p!r} has shape {arrays[p].shape}; expected "
+                    f"(1, {horizon[0] if horizon else 'horizon'}, {b - a})"
+                )
+            out[:, a:b] = arrays[p][0]
+        return out
+
+
 def _opening(values: np.ndarray, interface: PolicyInterface) -> np.ndarray:
     """Gripper action values as the fraction of the full opening (0 closed, 1 open)."""
     g = interface.gripper
@@ -175,5 +215,6 @@ FORMATS: dict[str, ObservationFormat] = {
         Droid("droid", robots=("franka",), render=WIDE),
         Aloha("aloha", robots=("piperx",), render=WIDE),
         ManiSkill("maniskill"),
+        Groot("groot", render=(SIZE, SIZE)),
     )
 }

@@ -10,6 +10,9 @@ named format (``obs_formats``); the client plays the first ``replan_steps`` acti
 chunk before asking again (openpi's examples replan every 5 steps) and keeps the server's
 own timing (its replies' ``server_timing``).
 
+GR00T's policy server (``zmq://HOST:PORT``, the ``groot`` format) is reached through
+``integrations.groot``'s channel instead; the rest is the same.
+
 A server that cannot be reached, or a connection that closes or times out, is not the
 policy's failure: the client reconnects with a bounded back-off (``RETRIES`` attempts,
 waits doubling from ``BACKOFF`` seconds) and asks again, and raises ``guard.ServerError``
@@ -20,6 +23,7 @@ from __future__ import annotations
 
 import dataclasses
 import time
+from collections.abc import Callable
 from contextlib import ExitStack
 from typing import Any
 
@@ -39,6 +43,7 @@ RETRIES = 5  # connection attempts before the server counts as gone
 BACKOFF = 0.5  # seconds before the second attempt; doubled for each further one
 #: What a lost or unreachable server raises (refused, reset, closed, timed out).
 NETWORK_ERRORS = (OSError, TimeoutError, ConnectionClosed)
+RESIZABLE = ("instructmove", "groot")  # the formats rendered at the export's size
 
 
 def _encode(obj: Any) -> Any:
@@ -72,11 +77,58 @@ def unpackb(data: bytes) -> Any:
     return msgpack.unpackb(data, object_hook=_decode)
 
 
+class WebsocketChannel:
+    """openpi's protocol: the server's metadata on connection, a msgpack map per request
+    and per reply; a text frame is the policy's error report."""
+
+    errors = NETWORK_ERRORS
+
+    def __init__(self, uri: str, timeout: float) -> None:
+        self.uri, self.timeout = uri, timeout
+        self.socket: ClientConnection | None = None
+        self._stack = ExitStack()
+
+    def open(self) -> dict:
+        """Connect; the server's metadata."""
+        self.socket = self._stack.enter_context(
+            connect(self.uri, max_size=None, open_timeout=self.timeout)
+        )
+        return unpackb(self.socket.recv(timeout=self.timeout))
+
+    def request(self, request: dict) -> dict:
+        self.socket.send(packb(request))
+        reply = self.socket.recv(timeout=self.timeout)
+        if isinstance(reply, str):
+            raise RuntimeError(f"policy server at {self.uri} failed: {reply}")
+        return unpackb(reply)
+
+    def reset(self) -> None:
+        """openpi's servers keep no episode state."""
+
+    def close(self) -> None:
+        self._stack.close()
+        self.socket = None
+
+
+def channel(uri: str, timeout: float):
+    """The channel of a policy server's address: ``ws://``/``wss://`` (openpi's protocol)
+    or ``zmq://`` (GR00T's)."""
+    if uri.startswith(("ws://", "wss://")):
+        return WebsocketChannel(uri, timeout)
+    if uri.startswith("zmq://"):
+        from .integrations import require
+
+        groot = require("instructmove_ms.integrations.groot", "groot", "a GR00T policy server")
+        return groot.ZmqChannel(uri, timeout)
+    raise ValueError(f"policy server address {uri!r}: expected ws://, wss:// or zmq://HOST:PORT")
+
+
 class RemotePolicy:
-    """Evaluator-convention policy that asks a websocket policy server for actions, in the
-    observation format ``obs_format`` (see ``obs_formats``); ``image_size`` (width, height)
-    renders the ``instructmove`` format's cameras at another size than its 224 x 224 (a model
-    trained on an export of that size)."""
+    """Evaluator-convention policy that asks a policy server for actions, in the
+    observation format ``obs_format`` (see ``obs_formats``): openpi's websocket protocol
+    (``ws://``) or GR00T's ZeroMQ one (``zmq://``, the ``groot`` format); ``image_size``
+    (width, height) renders the ``instructmove`` and ``groot`` formats' cameras at another
+    size than 224 x 224 (a model trained on an export of that size)."""
 
     def __init__(
         self,
@@ -93,12 +145,17 @@ class RemotePolicy:
         check_choice("observation format", obs_format, FORMATS)
         if replan_steps < 1:
             raise ValueError(f"replan_steps must be at least 1, got {replan_steps}")
+        if (obs_format == "groot") != uri.startswith("zmq://"):
+            raise ValueError(
+                f"--obs-format {obs_format} with {uri}: GR00T's server (zmq://) speaks the "
+                "groot format, and only it does"
+            )
         self.uri, self.format, self.control_mode = uri, FORMATS[obs_format], control_mode
         if image_size is not None:
-            if obs_format != "instructmove":
+            if obs_format not in RESIZABLE:
                 raise ValueError(
-                    f"an image size is for the instructmove format; {obs_format} sends "
-                    "openpi's 224 x 224"
+                    f"an image size is for the {' and '.join(RESIZABLE)} formats; "
+                    f"{obs_format} sends openpi's 224 x 224"
                 )
             if min(image_size) < 1:
                 raise ValueError(f"image size must be positive, got {image_size}")
@@ -109,8 +166,7 @@ class RemotePolicy:
         self.interface: PolicyInterface | None = None
         self.steps, self.fps = 0, 30.0  # the episode's steps so far; bind reads the env's rate
         self.timing: list[dict] = []
-        self.socket: ClientConnection | None = None
-        self._stack = ExitStack()
+        self.channel = channel(uri, timeout)
         self.metadata: dict = {}
         self.chunk: list[np.ndarray] = []
         self.prompt = ""
@@ -125,12 +181,9 @@ class RemotePolicy:
             if attempt:
                 time.sleep(self.backoff * 2 ** (attempt - 1))
             try:
-                self.socket = self._stack.enter_context(
-                    connect(self.uri, max_size=None, open_timeout=self.timeout)
-                )
-                self.metadata = unpackb(self.socket.recv(timeout=self.timeout))
+                self.metadata = self.channel.open()
                 return
-            except NETWORK_ERRORS as exc:
+            except self.channel.errors as exc:
                 self.close()
                 error = exc
         raise ServerError(
@@ -138,17 +191,15 @@ class RemotePolicy:
             f"({type(error).__name__}: {error})"
         )
 
-    def _ask(self, request: bytes) -> bytes | str:
-        """The server's reply to ``request``, reconnecting once per lost connection."""
+    def _ask(self, call: Callable[[], Any]) -> Any:
+        """What ``call`` on the channel returns, reconnecting once per lost connection."""
         try:
-            self.socket.send(request)
-            return self.socket.recv(timeout=self.timeout)
-        except NETWORK_ERRORS:
+            return call()
+        except self.channel.errors:
             self._reconnect()
             try:
-                self.socket.send(request)
-                return self.socket.recv(timeout=self.timeout)
-            except NETWORK_ERRORS as exc:
+                return call()
+            except self.channel.errors as exc:
                 raise ServerError(f"policy server {self.uri} lost the connection ({exc})") from exc
 
     def get_obs_mode(self) -> str:
@@ -172,6 +223,7 @@ class RemotePolicy:
 
     def reset(self, obs) -> None:
         self.chunk, self.steps = [], 0
+        self._ask(self.channel.reset)
 
     def held_actions(self) -> int:
         """Actions of the last chunk still to play: the next ``act`` reads no observation
@@ -183,15 +235,11 @@ class RemotePolicy:
             time_s = self.steps / self.fps
             request = self.format.encode(obs, self.prompt, self.interface, time_s)
             sent = time.perf_counter()
-            reply = self._ask(packb(request))
-            if isinstance(reply, str):
-                raise RuntimeError(f"policy server at {self.uri} failed: {reply}")
-            answer = unpackb(reply)
+            reply = self._ask(lambda: self.channel.request(request))
             timing = {"round_trip_ms": 1000.0 * (time.perf_counter() - sent)}
-            timing.update(answer.get("server_timing", {}))
+            timing.update(reply.get("server_timing", {}))
             self.timing.append(timing)
-            actions = np.asarray(answer["actions"], dtype=np.float32)
-            actions = self.format.decode(actions.reshape(-1, actions.shape[-1]), self.interface)
+            actions = self.format.actions(reply, self.interface)
             self.chunk = list(actions[: self.replan_steps])
         self.steps += 1
         return self.chunk.pop(0)[None]
@@ -207,13 +255,12 @@ class RemotePolicy:
     def __getstate__(self) -> dict:
         """Pickled without its connection (for evaluation workers): the copy connects
         again and keeps its own timing."""
-        state = {k: v for k, v in self.__dict__.items() if k not in ("socket", "_stack")}
+        state = {k: v for k, v in self.__dict__.items() if k != "channel"}
         return {**state, "timing": [], "chunk": []}
 
     def __setstate__(self, state: dict) -> None:
-        self.__dict__.update(state, socket=None, _stack=ExitStack())
+        self.__dict__.update(state, channel=channel(state["uri"], state["timeout"]))
         self._reconnect()
 
     def close(self) -> None:
-        self._stack.close()
-        self.socket = None
+        self.channel.close()

@@ -91,7 +91,7 @@ names = set(zipfile.ZipFile(sys.argv[1]).namelist())
 want = [
     "instructmove_ms.pth",  # written by build_hooks.BuildPyWithPth
     "instructmove_ms_autoload.py",
-    "instructmove_ms/cli.py",
+    "instructmove_ms/cli/__init__.py",
     "instructmove_ms/agents/__init__.py",
     "instructmove_ms/tasks/__init__.py",
     "instructmove_ms/assets/__init__.py",
@@ -175,15 +175,34 @@ for path in sorted(where.parent.rglob("*.py")):
     parts = parts[:-1] if parts[-1] == "__init__" else parts
     if parts[-1] != "__main__":
         names.append(".".join(parts))
-broken = []
+from instructmove_ms.integrations import MissingExtra
+
+broken, extras = [], {}
 for name in names:
     try:
         importlib.import_module(name)
+    except MissingExtra as exc:  # an integration whose optional package is not installed
+        extras[name] = str(exc)
     except Exception as exc:  # a dependency missing or built against another ABI
         broken.append(f"{name}: {exc!r}")
 assert not broken, "modules that do not import:\n  " + "\n  ".join(broken)
-print(f"[smoke]        {len(names)} modules of {where.parent} import")
+want = {
+    "instructmove_ms.integrations.vla_eval": "vla-eval",
+    "instructmove_ms.integrations.groot": "groot",
+}
+assert set(extras) == set(want), f"modules that need an extra: {sorted(extras)}"
+for name, extra in want.items():
+    assert f"pip install 'instructmove-ms[{extra}]'" in extras[name], extras[name]
+print(f"[smoke]        {len(names) - len(extras)} modules of {where.parent} import; "
+      f"{len(extras)} name their extra ({', '.join(sorted(want.values()))})")
 EOF
+
+log "a GR00T server without pyzmq: one line naming the extra, exit 2"
+rc=0
+instructmove eval --task PickCategory-InstructMove --robot franka --split seen --episodes 1 \
+  --policy zmq://127.0.0.1:9 --obs-format groot --out groot > groot.log 2>&1 || rc=$?
+[ "$rc" = 2 ] && [ "$(wc -l < groot.log)" = 1 ] && grep -q "instructmove-ms\[groot\]" groot.log \
+  || { cat groot.log >&2; fail "eval --policy zmq:// without pyzmq (exit $rc)"; }
 
 log "instructmove assets list"
 instructmove assets list > assets.txt || fail "instructmove assets list"

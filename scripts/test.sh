@@ -14,5 +14,9 @@ if [ "$#" -gt 0 ]; then
   "$py" -m pytest -q "$@"
   exit
 fi
-"$py" -m pytest -q -m "not portability"
+# The test files run in parallel, one process per core up to 4 (each builds its own scenes;
+# PYTEST_WORKERS overrides, 0 runs them in this process).
+cores="$(nproc)"
+"$py" -m pytest -q -m "not portability" -n "${PYTEST_WORKERS:-$((cores < 4 ? cores : 4))}" \
+  --dist loadfile --durations=15
 bash scripts/portability.sh

@@ -292,7 +292,7 @@ def test_a_brief_drop_of_the_connection_is_bridged():
     policy = RemotePolicy(server.uri, "maniskill", obs_mode="state_dict", retries=3, backoff=0.05)
     obs = {"agent": {"qpos": np.zeros((1, 9), dtype=np.float32)}}
     policy.act(obs)
-    policy.socket.close()  # the connection drops; the server is still there
+    policy.channel.socket.close()  # the connection drops; the server is still there
     assert policy.act(obs).shape == (1, 8)
     policy.close()
     server.stop()

@@ -170,5 +170,6 @@ def test_the_instructmove_format_renders_at_the_image_size_asked_for(tmp_path):
 
 
 def test_an_image_size_is_refused_for_the_fixed_size_formats():
-    with pytest.raises(ValueError, match="instructmove format; droid sends openpi's 224"):
+    refused = "instructmove and groot formats; droid sends openpi's 224"
+    with pytest.raises(ValueError, match=refused):
         RemotePolicy("ws://127.0.0.1:9", obs_format="droid", image_size=(128, 96))

@@ -15,12 +15,12 @@ from __future__ import annotations
 from pathlib import Path
 
 from instructmove_ms.files import write_json, write_text
+from instructmove_ms.obs_formats import GROOT_LANGUAGE
 
 from .lerobot_formats import IMAGE
 
 MODALITY = "meta/modality.json"
 CONFIG = "groot_modality_config.py"
-LANGUAGE = "human.task_description"
 ACTION_HORIZON = 16  # GR00T N1.6's default action horizon
 
 
@@ -31,7 +31,7 @@ def modality(record: dict) -> dict:
         "state": parts,
         "action": parts,
         "video": {cam: {"original_key": IMAGE.format(cam)} for cam in record["cameras"]},
-        "annotation": {LANGUAGE: {}},
+        "annotation": {GROOT_LANGUAGE.removeprefix("annotation."): {}},
     }
 
 
@@ -47,7 +47,7 @@ def config_file(record: dict, repo_id: str) -> str:
         repo_id=repo_id,
         cameras=list(record["cameras"]),
         parts=list(record["parts"]),
-        language=f"annotation.{LANGUAGE}",
+        language=GROOT_LANGUAGE,
         horizon=ACTION_HORIZON,
     )
 
