@@ -24,6 +24,23 @@ def make_env(env_id: str = ENV_ID, **kwargs):
 
 
 @pytest.fixture(scope="module")
+def oracle_plans():
+    """The planner oracle's actions on the harness tests' stored episodes (``oracle_replay``)."""
+    from oracle_replay import COUNT, EPISODES, oracle_actions
+
+    return oracle_actions(EPISODES, list(range(COUNT)))
+
+
+@pytest.fixture(scope="module")
+def oracle_reference(tmp_path_factory):
+    """``instructmove eval`` of the oracle on the same stored episodes: the rows a harness
+    must reproduce."""
+    from oracle_replay import COUNT, EPISODES, oracle_rows
+
+    return oracle_rows(EPISODES, COUNT, tmp_path_factory.mktemp("oracle"))
+
+
+@pytest.fixture(scope="module")
 def state_env():
     env = make_env()
     yield env

@@ -15,6 +15,10 @@ from instructmove_ms import heldout
 from instructmove_ms.integrations.stored import CONTROL_MODE, EpisodeSet
 from instructmove_ms.policies import OraclePolicy
 
+#: The stored episodes the harness tests replay the oracle on, and how many of them.
+EPISODES = EpisodeSet("PickCategory-InstructMove", "franka", "unseen_category")
+COUNT = 2
+
 
 def oracle_actions(episodes: EpisodeSet, indices: list[int]) -> dict[int, np.ndarray]:
     """Stored episode index -> the oracle's (horizon, action dim) actions."""
@@ -66,3 +70,4 @@ def same_scores(theirs: dict, ours: dict) -> None:
         assert theirs[key] == ours[key], (key, theirs[key], ours[key])
     stages = theirs.get("stages", theirs)
     assert {k: stages[k] for k in ours["stages"]} == ours["stages"]
+

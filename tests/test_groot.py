@@ -14,7 +14,7 @@ import threading
 import numpy as np
 import pytest
 import zmq
-from oracle_replay import oracle_actions, oracle_rows, same_scores
+from oracle_replay import COUNT, EPISODES, same_scores
 
 from instructmove_ms.cli import main
 from instructmove_ms.evaluation import evaluate_config
@@ -22,12 +22,9 @@ from instructmove_ms.export.groot import ACTION_HORIZON, modality
 from instructmove_ms.guard import ServerError
 from instructmove_ms.heldout import evaluator_config, load_set
 from instructmove_ms.integrations.groot import packb, unpackb
-from instructmove_ms.integrations.stored import EpisodeSet
 from instructmove_ms.obs_formats import GROOT_LANGUAGE
 from instructmove_ms.remote import RemotePolicy
 
-EPISODES = EpisodeSet("PickCategory-InstructMove", "franka", "unseen_category")
-COUNT = 2
 CAMERAS = ("ext1_camera", "ext2_camera", "wrist_camera")
 PARTS = {"arm": (0, 7), "gripper": (7, 8)}
 
@@ -104,33 +101,25 @@ class GrootReplayServer:
         self.thread.join(5)
 
 
-@pytest.fixture(scope="module")
-def plans() -> dict[int, np.ndarray]:
-    return oracle_actions(EPISODES, list(range(COUNT)))
-
-
-@pytest.fixture(scope="module")
-def ours(tmp_path_factory) -> list[dict]:
-    return oracle_rows(EPISODES, COUNT, tmp_path_factory.mktemp("ours"))
-
-
 def _eval(uri: str, out, *extra: str) -> int:
     args = ["eval", "--task", EPISODES.env_id, "--robot", "franka", "--split", EPISODES.split]
     args += ["--policy", uri, "--obs-format", "groot", "--episodes", str(COUNT)]
     return main([*args, "--replan-steps", str(ACTION_HORIZON), "--out", str(out), *extra])
 
 
-def test_the_groot_client_scores_the_replayed_oracle_as_instructmove_eval(plans, ours, tmp_path):
+def test_the_groot_client_scores_the_replayed_oracle_as_instructmove_eval(
+    oracle_plans, oracle_reference, tmp_path
+):
     import json
 
-    server = GrootReplayServer(plans, list(range(COUNT)))
+    server = GrootReplayServer(oracle_plans, list(range(COUNT)))
     try:
         assert _eval(server.uri, tmp_path) == 0
     finally:
         server.stop()
     assert not server.errors, server.errors[:3]
     rows = [json.loads(line) for line in (tmp_path / "episodes.jsonl").read_text().splitlines()]
-    for row, reference in zip(rows, ours, strict=True):
+    for row, reference in zip(rows, oracle_reference, strict=True):
         assert row["error"] is None
         same_scores(row, reference)
     assert any(r["success"] for r in rows)
@@ -142,12 +131,14 @@ def test_the_groot_client_scores_the_replayed_oracle_as_instructmove_eval(plans,
     assert modality(record)["annotation"] == {GROOT_LANGUAGE.removeprefix("annotation."): {}}
 
 
-def test_a_lost_groot_server_stops_the_run_and_a_resume_finishes_it(plans, ours, tmp_path):
+def test_a_lost_groot_server_stops_the_run_and_a_resume_finishes_it(
+    oracle_plans, oracle_reference, tmp_path
+):
     import json
 
     config = evaluator_config(EPISODES.env_id, "franka", EPISODES.split, episodes=COUNT)
     steps = config.max_episode_steps // ACTION_HORIZON + 1  # requests per episode
-    dying = GrootReplayServer(plans, list(range(COUNT)), die_after=steps + 6)
+    dying = GrootReplayServer(oracle_plans, list(range(COUNT)), die_after=steps + 6)
     policy = RemotePolicy(
         dying.uri, "groot", replan_steps=ACTION_HORIZON, timeout=2.0, retries=2, backoff=0.05
     )
@@ -156,13 +147,13 @@ def test_a_lost_groot_server_stops_the_run_and_a_resume_finishes_it(plans, ours,
     dying.thread.join(5)
     rows = [json.loads(line) for line in (tmp_path / "episodes.jsonl").read_text().splitlines()]
     assert [r["episode_id"] for r in rows] == [0]
-    back = GrootReplayServer(plans, [1])
+    back = GrootReplayServer(oracle_plans, [1])
     try:
         assert _eval(back.uri, tmp_path) == 0
     finally:
         back.stop()
     rows = [json.loads(line) for line in (tmp_path / "episodes.jsonl").read_text().splitlines()]
-    for row, reference in zip(rows, ours, strict=True):
+    for row, reference in zip(rows, oracle_reference, strict=True):
         same_scores(row, reference)
 
 

@@ -18,7 +18,7 @@ import gymnasium as gym
 import imageio.v2 as imageio
 import numpy as np
 import pytest
-from oracle_replay import oracle_actions, same_scores
+from oracle_replay import EPISODES, oracle_actions, same_scores
 from test_lerobot import ACT, CAMERAS, LEROBOT_PYTHON
 
 from instructmove_ms.export.lerobot import ACTION, STATE
@@ -30,12 +30,11 @@ from instructmove_ms.integrations.lerobot_env import (
     StoredEpisodesEnv,
     describe,
 )
-from instructmove_ms.integrations.stored import EpisodeSet, StoredEpisodes
+from instructmove_ms.integrations.stored import StoredEpisodes
 
 ROOT = Path(__file__).resolve().parent.parent
 TOOLS = Path(__file__).parent / "tools"
 PLUGIN = ROOT / "integrations" / "lerobot_env_instructmove"
-EPISODES = EpisodeSet("PickCategory-InstructMove", "franka", "unseen_category")
 WIDTH, HEIGHT = 128, 96  # not the default: the requested size must come out
 CLI_STEPS = 30  # lerobot-eval's episode (--env.episode_length): the random policy's whole run
 

@@ -13,17 +13,14 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from oracle_replay import oracle_actions, oracle_rows, same_scores
+from oracle_replay import COUNT, EPISODES, same_scores
 from vla_eval.api import evaluate as vla_evaluate
 from vla_eval.model_servers.predict import PredictModelServer
 
 from instructmove_ms.heldout import load_set
-from instructmove_ms.integrations.stored import EpisodeSet
 
 ROOT = Path(__file__).resolve().parent.parent
 CONFIG = ROOT / "integrations" / "vla_eval" / "instructmove_franka.yaml"
-EPISODES = EpisodeSet("PickCategory-InstructMove", "franka", "unseen_category")
-COUNT = 2
 WIDTH, HEIGHT = 128, 96
 
 
@@ -45,19 +42,10 @@ class ReplayServer(PredictModelServer):
         return {"actions": plan[min(ctx.step, len(plan) - 1)]}
 
 
-@pytest.fixture(scope="module")
-def plans() -> dict[int, np.ndarray]:
-    return oracle_actions(EPISODES, list(range(COUNT)))
-
-
-@pytest.fixture(scope="module")
-def ours(tmp_path_factory) -> list[dict]:
-    """``instructmove eval`` of the oracle on the same stored episodes."""
-    return oracle_rows(EPISODES, COUNT, tmp_path_factory.mktemp("ours"))
-
-
-def test_vla_eval_scores_the_oracle_as_instructmove_eval(plans, ours, tmp_path) -> None:
-    server = ReplayServer(plans)
+def test_vla_eval_scores_the_oracle_as_instructmove_eval(
+    oracle_plans, oracle_reference, tmp_path
+) -> None:
+    server = ReplayServer(oracle_plans)
     overrides = {
         "episodes_per_task": COUNT,
         "params": {"tasks": [EPISODES.env_id], "image_size": [WIDTH, HEIGHT]},
@@ -75,11 +63,11 @@ def test_vla_eval_scores_the_oracle_as_instructmove_eval(plans, ours, tmp_path) 
     episodes = sorted(task["episodes"], key=lambda e: e["episode_id"])
     assert [e["episode_id"] for e in episodes] == list(range(COUNT))
     assert not [e for e in episodes if e.get("failure_reason")]
-    for episode, row in zip(episodes, ours, strict=True):
-        assert episode["steps"] == len(plans[row["episode_id"]])  # the whole horizon
+    for episode, row in zip(episodes, oracle_reference, strict=True):
+        assert episode["steps"] == len(oracle_plans[row["episode_id"]])  # the whole horizon
         same_scores(episode["metrics"], row)
-    assert any(row["success"] for row in ours)  # the comparison sees a success
-    expected = np.mean([row["stage_score"] for row in ours])
+    assert any(row["success"] for row in oracle_reference)  # the comparison sees a success
+    expected = np.mean([row["stage_score"] for row in oracle_reference])
     assert result["mean_stage_score"] == pytest.approx(expected)
     assert set(result["metric_keys"]) >= {"success", "success_at_end", "stage_score", "reach"}
 
@@ -92,7 +80,7 @@ def test_vla_eval_scores_the_oracle_as_instructmove_eval(plans, ours, tmp_path) 
             assert image.shape == (HEIGHT, WIDTH, 3) and image.dtype == np.uint8
         state = np.asarray(obs["state"])
         assert state.shape == (8,) and state.dtype == np.float32
-    assert len(server.seen) == sum(len(p) for p in plans.values())  # one query per step
+    assert len(server.seen) == sum(len(p) for p in oracle_plans.values())  # one query per step
 
 
 def test_benchmark_options_are_checked() -> None:

@@ -252,7 +252,10 @@ def describe(
 def _lerobot_configs() -> tuple[Any, str | None]:
     """LeRobot's env config module, or None and why not."""
     if importlib.util.find_spec("lerobot") is None:
-        return None, "lerobot is not installed"
+        return None, (
+            "lerobot is not installed: pip install 'lerobot>=0.4.4' "
+            "./integrations/lerobot_env_instructmove"
+        )
     try:
         return importlib.import_module("lerobot.envs.configs"), None
     except Exception as exc:  # a broken lerobot must not break the gymnasium env
