@@ -90,6 +90,8 @@ def test_benchmark_options_are_checked() -> None:
         InstructMoveBenchmark(tasks=["PickNothing"])
     with pytest.raises(ValueError, match="'sideways'"):
         InstructMoveBenchmark(conditions=["sideways"])
+    with pytest.raises(ValueError, match="'train'"):
+        InstructMoveBenchmark(split="train")
     bench = InstructMoveBenchmark(conditions=["all"], send_wrist_image=False)
     names = [t["name"] for t in bench.get_tasks()]
     assert len(names) == len(set(names)) == 4 * 5

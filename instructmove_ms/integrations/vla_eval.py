@@ -31,6 +31,7 @@ _specs = require("vla_eval.specs", "vla-eval", "the vla-eval benchmark")
 
 from ..episode import CONDITIONS  # noqa: E402  (after the optional import's check)
 from ..obs_formats import SIZE  # noqa: E402
+from ..splits import EVAL_SPLITS  # noqa: E402
 from ..tasks import TASKS  # noqa: E402
 from ..validation import check_choice  # noqa: E402
 from .stored import EpisodeSet, StoredEpisodes  # noqa: E402
@@ -69,14 +70,16 @@ class InstructMoveBenchmark(_base.StepBenchmark):
     ) -> None:
         super().__init__()
         conditions = list(CONDITIONS) if conditions in (["all"], "all") else conditions
+        check_choice("split", split, EVAL_SPLITS)
+        for env_id in tasks or ():
+            check_choice("task", env_id, TASKS)
+        for condition in conditions or ():
+            check_choice("condition", condition, CONDITIONS)
         self.sets = [
-            EpisodeSet(env_id, robot, split, condition, perturb)
+            EpisodeSet(env_id, robot or TASKS[env_id].default_robot, split, condition, perturb)
             for env_id in tasks or list(TASKS)
             for condition in conditions or ["normal"]
         ]
-        for s in self.sets:
-            check_choice("task", s.env_id, TASKS)
-            check_choice("condition", s.condition, CONDITIONS)
         self.image_size = (int(image_size[0]), int(image_size[1]))
         self.send_state, self.send_wrist_image = send_state, send_wrist_image
         self.stop_on_success = stop_on_success
@@ -88,7 +91,7 @@ class InstructMoveBenchmark(_base.StepBenchmark):
             {
                 "name": s.name,
                 "env_id": s.env_id,
-                "robot": s.robot or TASKS[s.env_id].default_robot,
+                "robot": s.robot,
                 "split": s.split,
                 "condition": s.condition,
                 **({"perturb": s.perturb} if s.perturb else {}),
@@ -145,10 +148,7 @@ class InstructMoveBenchmark(_base.StepBenchmark):
     def _stored_count(self) -> int:
         from ..heldout import load_set
 
-        return min(
-            len(load_set(s.env_id, s.robot or TASKS[s.env_id].default_robot, s.split))
-            for s in self.sets
-        )
+        return min(len(load_set(s.env_id, s.robot, s.split)) for s in self.sets)
 
     def get_action_spec(self) -> dict:
         return {"joints": _specs.DimSpec("joints", 0, "joint_pos_absolute")}
