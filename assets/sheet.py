@@ -1,4 +1,5 @@
-"""Contact sheets: every instance of a super-category, photographed and labelled."""
+"""Contact sheets: every instance of a super-category, photographed and labelled; and the
+recognition sheet, one unlabelled close-up per category with its key beside it."""
 
 from __future__ import annotations
 
@@ -7,6 +8,7 @@ from pathlib import Path
 
 import cv2
 import numpy as np
+from tqdm import tqdm
 
 from ..files import atomic_path
 from .catalog import Instance
@@ -15,12 +17,15 @@ from .sim import add_camera, look_at, spawn, table_scene
 TILE = 192
 
 
-def photograph(instances: list[Instance], tile: int = TILE) -> list[np.ndarray]:
-    """One RGB tile per instance, from the front-left and above, framed by its size."""
+def photograph(
+    instances: list[Instance], tile: int = TILE, progress: str | None = None
+) -> list[np.ndarray]:
+    """One RGB tile per instance, from the front-left and above, framed by its size (with a
+    progress bar named ``progress`` if given)."""
     scene = table_scene(render=True)
     camera = add_camera(scene, "sheet", tile, tile, math.radians(40), 0.005, 10.0)
     images = []
-    for inst in instances:
+    for inst in tqdm(instances, desc=progress, unit="object", disable=progress is None):
         entity = spawn(scene, inst, z=0.0)
         radius = max(float(np.linalg.norm(inst.dims)) / 2, 0.03)
         center = np.array([0.0, 0.0, inst.height / 2])
@@ -58,9 +63,36 @@ def contact_sheet(instances: list[Instance], path: Path, columns: int = 10) -> P
             f"{inst.material} {inst.height * 100:.1f}cm",
         ]
         rows.setdefault(inst.category, []).append(label(img, text))
+    return _write_grid(path, list(rows.values()), columns)
+
+
+def recognition_sheet(instances: list[Instance], out: Path, columns: int = 10) -> tuple[Path, Path]:
+    """``out/recognition.png``: one close-up per category of ``instances`` (its first
+    instance), numbered and otherwise unlabelled, in an order that says nothing of the
+    names (by identity hash); ``out/recognition_key.png``: the same tiles with each category
+    under its number. A reviewer names every numbered object, then checks the key."""
+    first: dict[str, Instance] = {}
+    for inst in instances:
+        first.setdefault(inst.category, inst)
+    chosen = sorted(first.values(), key=lambda inst: inst.uuid)
+    tiles = photograph(chosen, progress="close-ups")
+    numbered = [label(img, [str(k + 1)]) for k, img in enumerate(tiles)]
+    keyed = [
+        label(img, [str(k + 1), inst.category.replace("_", " ")])
+        for k, (inst, img) in enumerate(zip(chosen, tiles, strict=True))
+    ]
+    return (
+        _write_grid(out / "recognition.png", [numbered], columns),
+        _write_grid(out / "recognition_key.png", [keyed], columns),
+    )
+
+
+def _write_grid(path: Path, rows: list[list[np.ndarray]], columns: int) -> Path:
+    """Write ``rows`` of BGR tiles to ``path`` (PNG), each wrapped at ``columns`` and padded
+    with white."""
     blank = np.full((TILE, TILE, 3), 255, np.uint8)
     grid = []
-    for row in rows.values():
+    for row in rows:
         for start in range(0, len(row), columns):
             chunk = row[start : start + columns]
             grid.append(np.concatenate(chunk + [blank] * (columns - len(chunk)), axis=1))

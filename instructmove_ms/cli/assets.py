@@ -76,8 +76,12 @@ def _cmd_assets_sheet(args: argparse.Namespace) -> int:
 
     from tqdm import tqdm
 
-    from instructmove_ms.assets.sheet import contact_sheet
+    from instructmove_ms.assets.sheet import contact_sheet, recognition_sheet
 
+    if args.recognition:
+        for path in recognition_sheet(_assets(args), Path(args.recognition)):
+            print(path)
+        return 0
     groups: dict[str, list] = {}
     for inst in _assets(args):
         groups.setdefault(inst.super_category, []).append(inst)
@@ -175,3 +179,11 @@ def add_parsers(sub: argparse._SubParsersAction) -> None:
             )
         if name == "sheet":
             p.add_argument("--out", default="out/sheets", help="folder for the PNGs")
+            p.add_argument(
+                "--recognition",
+                default=None,
+                metavar="OUT",
+                help="instead: one unlabelled close-up per category (OUT/recognition.png) and "
+                "its labelled key (OUT/recognition_key.png), to check each object reads as its "
+                "name",
+            )
