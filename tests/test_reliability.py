@@ -135,6 +135,10 @@ def _bad_inputs(tmp_path: Path, demo: Path) -> dict[str, tuple[list[str], str]]:
         "no module": ([*evaluate, "--policy", "nosuchmodule:Cls", *out], "'nosuchmodule'"),
         "no class": ([*evaluate, "--policy", "json:NoSuchClass", *out], "no 'NoSuchClass'"),
         "no server": ([*evaluate, "--policy", "ws://127.0.0.1:1", *out], "ws://127.0.0.1:1"),
+        "groot over websocket": (
+            [*evaluate, "--policy", "ws://127.0.0.1:1", "--obs-format", "groot", *out],
+            "speaks the groot format",
+        ),
         "zero episodes": ([*evaluate, "--policy", "random", "--episodes", "0", *out], "got 0"),
         "negative episodes": ([*evaluate, "--policy", "random", "--episodes", "-1", *out], "-1"),
         "spec lacks a field": (
