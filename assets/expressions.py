@@ -1,21 +1,24 @@
 """Referring expressions from our own grammar, every phrase true of its instance.
 
-Phrases combine a category noun with the colour the camera shows of it (one of its stated
-colours, ``appearance.shown_color``, said as people say it: "clear", "gold"), its material
-and distinctive parts ("the red mug", "ceramic mug with a handle"). Shape words are left to
-the attribute cue, where they tell objects apart. About 15 go to the seen pool and 5 to the
-unseen pool, split deterministically by a hash of (uuid, phrase).
+Phrases put the modifiers before a category noun, as people say them: the colour the camera
+shows of it (one of its stated colours, ``appearance.shown_color``, said as people say it:
+"clear", "gold") and its material where people name it ("the red mug", "the ceramic mug",
+"the metal bottle opener"). A packaged food's colour is its package's and is said as such
+("the juice in the green bottle"). Parts ("with a handle") and shape words are left out:
+in our families the noun already tells the candidates apart (the verifier's noun rule), and
+shape, like a plain material, is said only by the attribute cue, where it does. About 15
+go to the seen pool and 5 to the unseen pool, split deterministically by a hash of (uuid,
+phrase).
 """
 
 from __future__ import annotations
 
 import hashlib
-import re
 
 from .appearance import shown_color
 from .catalog import Instance
 
-#: Material adjectives; "organic" (fruit, food) has none that a person would say.
+#: Material adjectives (what the attribute cue says); "organic" (fruit, food) has none.
 MATERIAL_ADJECTIVE = {
     "plastic": "plastic",
     "metal": "metal",
@@ -29,31 +32,6 @@ MATERIAL_ADJECTIVE = {
     "leather": "leather",
     "stone": "stone",
     "wicker": "wicker",
-}
-#: Part names that make a distinctive feature, and how a person says them.
-FEATURES = {
-    "handle": "handle",
-    "cap": "cap",
-    "lid": "lid",
-    "stem": "stem",
-    "leaf": "leaf",
-    "label": "label",
-    "clip": "clip",
-    "tab": "pull tab",
-    "sleeve": "sleeve",
-    "straw": "straw",
-    "pump": "pump",
-    "spout": "spout",
-    "blade": "blade",
-    "bristles": "bristles",
-    "power": "power button",
-    "connector": "metal connector",
-    "cork": "cork",
-    "nozzle": "nozzle",
-    "trigger": "trigger",
-    "wheel": "wheel",
-    "screen": "screen",
-    "lens": "lens",
 }
 #: Shape words as a person says them before a noun.
 SHAPE_ADJECTIVE = {
@@ -71,6 +49,28 @@ SHAPE_ADJECTIVE = {
     "flat": "flat",
     "elongated": "long",
 }
+#: Materials people name when they describe an object ("the wooden spoon", "the metal
+#: bottle opener"); plastic, paper, rubber and the like go unsaid unless they tell two
+#: candidates apart (the attribute cue), and so does any material of a food.
+NOTABLE_MATERIALS = frozenset({"metal", "wood", "ceramic", "glass", "stone", "leather", "wicker"})
+#: What a packaged food comes in, by (category, material): a colour of it that no part of
+#: the food itself has is said of this ("the string cheese in the purple wrapper").
+PACKAGES = {
+    ("biscuit", "organic"): "packet",
+    ("biscuit", "paper"): "packet",
+    ("candy", "organic"): "wrapper",
+    ("cheese_sticks", "organic"): "wrapper",
+    ("chewing_gum", "paper"): "pack",
+    ("chocolate", "organic"): "wrapper",
+    ("chocolate", "plastic"): "wrapper",
+    ("juice", "paper"): "carton",
+    ("juice", "plastic"): "bottle",
+    ("potato_chips", "paper"): "tube",
+    ("potato_chips", "plastic"): "bag",
+}
+#: Nouns with one of these words name the package itself ("soda can", "pack of gum"): its
+#: colour goes before them.
+PACKAGE_NOUNS = frozenset({"bottle", "box", "can", "carton", "pack", "packet", "tube", "bag"})
 SEEN, UNSEEN = 15, 5
 
 #: Colour words as people say them, where the annotation's word is not ("transparent").
@@ -82,56 +82,47 @@ def color_word(color: str) -> str:
     return COLOR_WORDS.get(color, color)
 
 
-def _base_name(part_name: str) -> str:
-    return re.sub(r"(_[a-z]?[+-]?\d+)+$", "", part_name)
+def said_material(inst: Instance) -> str | None:
+    """The material adjective people would say of ``inst`` unprompted, if any."""
+    if inst.domain == "food" or inst.material not in NOTABLE_MATERIALS:
+        return None
+    return MATERIAL_ADJECTIVE[inst.material]
 
 
-def features(inst: Instance) -> list[tuple[str, str]]:
-    """(feature word, its colour) for each distinctive part kind of the instance."""
-    found: dict[str, str] = {}
-    for part in inst.parts:
-        word = FEATURES.get(_base_name(part.name))
-        if word and word not in found:
-            found[word] = part.color
-    return sorted(found.items())
-
-
-def _be(noun: str) -> str:
-    """'are' for plural nouns (sticky notes, chopsticks), 'is' otherwise (glass, floss)."""
-    return "are" if noun.endswith("s") and not noun.endswith("ss") else "is"
-
-
-def _with(word: str, color: str | None) -> str:
-    article = "" if word.endswith("s") else "an " if word[0] in "aeiou" else "a "
-    if color:
-        article = "" if word.endswith("s") else "an " if color[0] in "aeiou" else "a "
-        return f"with {article}{color} {word}"
-    return f"with {article}{word}"
+def colored(inst: Instance, noun: str) -> str | None:
+    """``noun`` with the colour the camera shows of ``inst`` ("red mug"), said of a packaged
+    food's package ("juice in the green bottle", "green pack of gum"); None where ``inst``
+    shows no stated colour or its package has no word."""
+    shown = shown_color(inst)
+    if shown is None:
+        return None
+    word = color_word(shown)
+    own = inst.domain != "food" or any(
+        p.material == "organic" and p.color == shown for p in inst.parts
+    )
+    if own or PACKAGE_NOUNS & set(noun.split()):
+        return f"{word} {noun}"
+    package = PACKAGES.get((inst.category, inst.material))
+    return f"{noun} in the {word} {package}" if package else None
 
 
 def all_phrases(inst: Instance) -> list[str]:
     """Every phrase the grammar makes for ``inst`` (deduplicated, in a fixed order)."""
-    shown = shown_color(inst)
-    color = color_word(shown) if shown else None
-    colors = " and ".join(color_word(c) for c in inst.colors)
-    material = MATERIAL_ADJECTIVE.get(inst.material)
+    material = said_material(inst)
+    both = " and ".join(color_word(c) for c in inst.colors)
+    two_colored = len(inst.colors) == 2 and inst.domain != "food" and shown_color(inst)
     out: list[str] = []
     for noun in inst.nouns:
         out.append(noun)
-        if color:
-            out += [f"{color} {noun}", f"{noun} that {_be(noun)} {color}"]
-        if len(inst.colors) == 2 and shown:
-            out.append(f"{colors} {noun}")
-        if material:
+        phrase = colored(inst, noun)
+        if phrase:
+            out.append(phrase)
+        if two_colored:
+            out.append(f"{both} {noun}")
+        if material and material not in noun.split():  # not "glass wine glass"
             out.append(f"{material} {noun}")
-            if color:
-                out.append(f"{color} {material} {noun}")
-        for word, part_color in features(inst):
-            out.append(f"{noun} {_with(word, None)}")
-            if color:
-                out.append(f"{color} {noun} {_with(word, None)}")
-            if part_color != shown:
-                out.append(f"{noun} {_with(word, color_word(part_color))}")
+            if phrase and phrase.endswith(f" {noun}"):
+                out.append(f"{phrase[: -len(noun)]}{material} {noun}")
     return list(dict.fromkeys(out))
 
 

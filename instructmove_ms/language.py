@@ -2,11 +2,19 @@
 
 from __future__ import annotations
 
+import re
+
 import numpy as np
 
 from .assets.appearance import shown_color
 from .assets.catalog import Instance
-from .assets.expressions import MATERIAL_ADJECTIVE, SHAPE_ADJECTIVE, color_word, expressions
+from .assets.expressions import (
+    MATERIAL_ADJECTIVE,
+    SHAPE_ADJECTIVE,
+    color_word,
+    colored,
+    expressions,
+)
 from .splits import UNSEEN_SPLITS
 
 
@@ -34,10 +42,16 @@ def is_plural(noun: str) -> bool:
     )
 
 
+def spaced(text: str) -> str:
+    """``text`` with its punctuation ("?", ",") turned to spaces and a space at each end, so
+    that ``f" {phrase} " in spaced(text)`` finds whole words."""
+    return f" {re.sub(r'[?!.,;:]', ' ', text)} "
+
+
 def pronoun(instance: Instance | None, phrase: str) -> str:
     """ "them" where ``phrase`` names ``instance`` by a plural noun (its longest noun in the
     phrase), else "it"."""
-    named = [n for n in (instance.nouns if instance else ()) if f" {n} " in f" {phrase} "]
+    named = [n for n in (instance.nouns if instance else ()) if f" {n} " in spaced(phrase)]
     return "them" if named and is_plural(max(named, key=len)) else "it"
 
 
@@ -65,6 +79,18 @@ def attribute_word(instance: Instance, attribute: str, direction: str = "") -> s
     return {"larger": "biggest", "smaller": "smallest"}[direction]
 
 
+def attribute_phrase(instance: Instance, attribute: str, noun: str, direction: str = "") -> str:
+    """``noun`` with the word of ``instance``'s value of ``attribute`` before it ("red mug",
+    "wooden spoon", "biggest apple"); a packaged food's colour is its package's ("juice in
+    the green bottle", see ``expressions.colored``)."""
+    if attribute == "color":
+        phrase = colored(instance, noun)
+        if phrase is None:
+            raise ValueError(f"{instance.category} shows no colour it has a phrase for")
+        return phrase
+    return f"{attribute_word(instance, attribute, direction)} {noun}"
+
+
 def names(instance: Instance, text: str) -> bool:
     """Whether ``text`` names ``instance`` by one of its nouns (as whole words)."""
     return named_noun(instance, text) is not None
@@ -72,7 +98,7 @@ def names(instance: Instance, text: str) -> bool:
 
 def named_noun(instance: Instance, text: str) -> str | None:
     """The longest of ``instance``'s nouns that ``text`` says (as whole words), if any."""
-    said = [n for n in instance.nouns if f" {n} " in f" {text} "]
+    said = [n for n in instance.nouns if f" {n} " in spaced(text)]
     return max(said, key=len) if said else None
 
 
@@ -103,7 +129,6 @@ VERB_SYNONYMS = {
     "grasp": "clutch",
     "take": "get",
     "get": "bring",
-    "raise": "hold up",
     "put": "drop",
     "place": "position",
     "move": "transfer",

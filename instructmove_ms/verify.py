@@ -20,7 +20,7 @@ from .assets.affordances import graspable
 from .assets.catalog import Catalog
 from .episode import CONDITIONS, EpisodeSpec
 from .family import TaskSpec
-from .language import head, named_noun
+from .language import head, named_noun, spaced
 
 #: Bumped whenever a rule of the verifier changes; certificates record it.
 VERIFIER_VERSION = 2
@@ -100,7 +100,7 @@ def verify(
         inst = catalog[spec.objects[k].uuid]
         if inst.interior is None:
             problems.append(f"destination {k} ({inst.category}) has no interior")
-    words = set(spec.instruction.lower().split())
+    words = set(spaced(spec.instruction.lower()).split())
     leaked = sorted(words & FORBIDDEN_WORDS)
     if leaked or any(ch.isdigit() or ch == "_" for ch in spec.instruction):
         problems.append(f"instruction {spec.instruction!r} leaks internal names {leaked}")

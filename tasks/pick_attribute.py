@@ -17,9 +17,10 @@ from instructmove_ms.assets.appearance import (
     shown_color,
 )
 from instructmove_ms.assets.catalog import Catalog, Instance
+from instructmove_ms.assets.expressions import colored
 from instructmove_ms.episode import EpisodeSpec
 from instructmove_ms.family import Cue, Members, TaskSpec
-from instructmove_ms.language import attribute_word, names, noun
+from instructmove_ms.language import attribute_phrase, attribute_word, names, noun, spaced
 from instructmove_ms.sampler import (
     EACH_OTHER,
     EXTENT_RATIO,
@@ -79,6 +80,8 @@ class AttributeCue(Cue):
         attribute = cue["attribute"]
         if attribute != "size" and attribute_word(target, attribute) is None:
             raise RoleError(f"{target.category} has no word for its {attribute}")
+        if attribute == "color" and any(colored(target, n) is None for n in target.nouns):
+            raise RoleError(f"{target.category}: a colour of a package without a word")
         candidates = assigned["target"] + assigned["distractor"]
         if not _colors_tell_apart(candidates):
             raise RoleError(f"{target.category}: candidates whose colours do not show apart")
@@ -91,8 +94,7 @@ class AttributeCue(Cue):
         self, rng: np.random.Generator, cue: dict, members: Members, goal: int, split: str
     ) -> str:
         inst = members[goal][0]
-        word = attribute_word(inst, cue["attribute"], cue.get("direction", ""))
-        return f"{word} {noun(rng, inst)}"
+        return attribute_phrase(inst, cue["attribute"], noun(rng, inst), cue.get("direction", ""))
 
     def alternative(self, cue: dict, members: Members, candidates: Sequence[int], goal: int):
         """The same attribute where the goal's material or shape is unique among the
@@ -121,7 +123,7 @@ class AttributeCue(Cue):
                 for o in others
             )
         word = attribute_word(inst, cue["attribute"])
-        if not word or f" {word} " not in f" {text} ":
+        if not word or f" {word} " not in spaced(text):
             return False
         if cue["attribute"] == "color":
             return _colors_tell_apart([inst, *others]) and all(

@@ -29,9 +29,9 @@ PICK_TEMPLATES = (
     "lift the {target}",
     "grasp the {target} and lift {it}",
     "take the {target} off the table",
-    "raise the {target}",
+    "take the {target}",
     "please pick up the {target}",
-    "can you lift the {target}",
+    "can you lift the {target}?",
     "get the {target} and hold {it} up",
 )
 

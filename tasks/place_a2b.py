@@ -64,7 +64,7 @@ PLACE_A2B = TaskSpec(
         "pick up the {target} and put {it} {prep} the {destination}",
         "get the {target} {prep} the {destination}",
         "take the {target} and place {it} {prep} the {destination}",
-        "can you put the {target} {prep} the {destination}",
+        "can you put the {target} {prep} the {destination}?",
         "please move the {target} {prep} the {destination}",
     ),
     # Longer than the pick families' 300: a dual-arm rig may relay the object between its

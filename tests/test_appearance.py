@@ -21,7 +21,7 @@ from instructmove_ms.assets.appearance import (
     shown_color,
     swatch,
 )
-from instructmove_ms.assets.expressions import all_phrases
+from instructmove_ms.assets.expressions import all_phrases, colored
 from instructmove_ms.assets.identity import content_hash
 from instructmove_ms.assets.photometry import rendered_color, rendered_swatch
 from instructmove_ms.assets.vocab import COLORS
@@ -60,7 +60,8 @@ def test_phrases_use_the_colour_the_camera_shows():
             continue
         color, distance = color_match(inst)
         assert color == shown and distance <= MATCH
-        assert f"{color_word(shown)} {inst.nouns[0]}" in all_phrases(inst)
+        phrase = colored(inst, inst.nouns[0])
+        assert color_word(shown) in phrase.split() and phrase in all_phrases(inst)
         moved += shown != inst.colors[0]
     assert moved > 0, "some two-coloured objects show their second colour most"
 

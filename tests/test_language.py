@@ -8,7 +8,7 @@ import pytest
 
 from instructmove_ms import heldout
 from instructmove_ms.assets import load_snapshot
-from instructmove_ms.language import is_plural, pronoun
+from instructmove_ms.language import is_plural, pronoun, spaced
 from instructmove_ms.splits import EVAL_SPLITS
 from instructmove_ms.tasks import TASKS
 
@@ -53,7 +53,7 @@ def test_every_stored_instruction_agrees_with_its_target():
                     if match is None:
                         continue
                     target = catalog[spec.target_object.uuid]
-                    named = [n for n in target.nouns if f" {n} " in f" {spec.instruction} "]
+                    named = [n for n in target.nouns if f" {n} " in spaced(spec.instruction)]
                     expected = "them" if is_plural(max(named, key=len)) else "it"
                     assert match.group(1) == expected, spec.instruction
                     seen[expected] += 1
