@@ -9,7 +9,7 @@ import cv2
 import numpy as np
 
 from .files import atomic_path
-from .heldout import load_set
+from .heldout import SET_VERSION, load_set
 from .perturb_sheet import sheet_env
 from .video import FONT, wrap
 
@@ -36,10 +36,11 @@ def episode_sheet(
     count: int = 20,
     columns: int = 4,
     folder: Path | None = None,
+    version: int = SET_VERSION,
 ) -> Path:
     """Write a PNG grid of the first ``count`` stored episodes of (env, robot, split), from
-    the package's sets or those in ``folder``."""
-    specs = load_set(env_id, robot, split, folder)[:count]
+    the package's sets of ``version`` or those in ``folder``."""
+    specs = load_set(env_id, robot, split, folder, version)[:count]
     env = sheet_env(env_id, robot, TILE_WIDTH, TILE_HEIGHT)
     try:
         camera = env.unwrapped.agent.scene_cameras[0]

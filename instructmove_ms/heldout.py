@@ -2,7 +2,9 @@
 
 Evaluation seeds come from ``splits.eval_seed`` (training data and demos use seeds below
 ``splits.EVAL_SEED_BASE``, so the two never share an episode). The sets ship with the
-package under ``tasks/episodes/<env id>/<robot>/<split>.jsonl``.
+package under ``tasks/episodes/v<version>/<env id>/<robot>/<split>.jsonl``: version 3 (the
+default) is said as people say it (``assets.expressions``); version 2, the same seeds in
+the former phrasing, stays loadable so that results published on it can be reproduced.
 
 A set also exports as a config of ManiSkill's evaluator convention: ``env_info`` (``env_id``,
 ``max_episode_steps``, ``env_kwargs``) and ``episodes`` of ``{episode_id, reset_kwargs}``,
@@ -32,16 +34,25 @@ from .validation import check_choice
 from .verify import verify
 
 EPISODES_PER_SET = 100
+#: The stored set versions (``--set-version``) and the one evaluation uses by default.
+SET_VERSIONS = (2, 3)
+SET_VERSION = 3
 #: Seeds tried per kept episode at most (seeds whose scenes hide a candidate are skipped).
 SEEDS_PER_EPISODE = 5
 
 
-def default_folder() -> Path:
-    return Path(str(resources.files("instructmove_ms.tasks").joinpath("episodes")))
+def default_folder(version: int = SET_VERSION) -> Path:
+    """The package's folder of the stored sets of ``version``."""
+    check_choice("set version", version, SET_VERSIONS)
+    return Path(str(resources.files("instructmove_ms.tasks").joinpath(f"episodes/v{version}")))
 
 
-def set_path(env_id: str, robot: str, split: str, folder: Path | None = None) -> Path:
-    return (folder or default_folder()) / env_id / robot / f"{split}.jsonl"
+def set_path(
+    env_id: str, robot: str, split: str, folder: Path | None = None, version: int = SET_VERSION
+) -> Path:
+    """Where the set (env, robot, split) lies: under ``folder`` if given, else in the
+    package's sets of ``version``."""
+    return (folder or default_folder(version)) / env_id / robot / f"{split}.jsonl"
 
 
 def write_set(path: Path, specs: list[EpisodeSpec]) -> Path:
@@ -49,10 +60,13 @@ def write_set(path: Path, specs: list[EpisodeSpec]) -> Path:
     return write_text(path, "".join(spec.to_json() + "\n" for spec in specs))
 
 
-def load_set(env_id: str, robot: str, split: str, folder: Path | None = None) -> list[EpisodeSpec]:
-    """The stored held-out episodes of (env, robot, split)."""
+def load_set(
+    env_id: str, robot: str, split: str, folder: Path | None = None, version: int = SET_VERSION
+) -> list[EpisodeSpec]:
+    """The stored held-out episodes of (env, robot, split), from ``folder`` or the package's
+    sets of ``version``."""
     check_choice("split", split, EVAL_SPLITS)
-    path = set_path(env_id, robot, split, folder)
+    path = set_path(env_id, robot, split, folder, version)
     if not path.is_file():
         stored = sorted(
             p.relative_to(path.parents[2]).as_posix() for p in path.parents[2].glob("*/*/*.jsonl")
@@ -230,17 +244,18 @@ def evaluator_config(
     episodes: int | None = None,
     folder: Path | None = None,
     perturbation: dict[str, int] | str | None = None,
+    version: int = SET_VERSION,
 ) -> EvaluatorConfig:
-    """The evaluator config of the first ``episodes`` of the stored set (all by default),
-    each re-rendered for ``condition`` (the same scene with that condition's instruction)
-    and perturbed at ``perturbation``'s levels (see ``perturbation``)."""
+    """The evaluator config of the first ``episodes`` of the stored set of ``version`` (all
+    by default), each re-rendered for ``condition`` (the same scene with that condition's
+    instruction) and perturbed at ``perturbation``'s levels (see ``perturbation``)."""
     check_choice("task", env_id, TASKS)
     check_choice("condition", condition, CONDITIONS)
     if episodes is not None and episodes < 1:
         raise ValueError(f"episodes must be at least 1, got {episodes}")
     robot = robot or TASKS[env_id].default_robot
     check_choice("robot", robot, TASKS[env_id].supported_robots)
-    specs = load_set(env_id, robot, split, folder)[:episodes]
+    specs = load_set(env_id, robot, split, folder, version)[:episodes]
     levels = parse_levels(perturbation)
     if condition != "normal" or levels:
         specs = _respec(env_id, robot, split, condition, levels, specs)

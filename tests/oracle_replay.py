@@ -70,4 +70,3 @@ def same_scores(theirs: dict, ours: dict) -> None:
         assert theirs[key] == ours[key], (key, theirs[key], ours[key])
     stages = theirs.get("stages", theirs)
     assert {k: stages[k] for k in ours["stages"]} == ours["stages"]
-

@@ -19,6 +19,20 @@ def _add_workers(p: argparse.ArgumentParser, what: str) -> None:
     )
 
 
+def _add_set_version(p: argparse.ArgumentParser) -> None:
+    """``--set-version`` of the stored held-out sets a verb reads."""
+    from instructmove_ms.heldout import SET_VERSION, SET_VERSIONS
+
+    p.add_argument(
+        "--set-version",
+        type=int,
+        choices=SET_VERSIONS,
+        default=SET_VERSION,
+        help=f"stored held-out sets to read (default {SET_VERSION}; older ones reproduce "
+        "published results)",
+    )
+
+
 def _workers(args: argparse.Namespace, gpus: float = 0.0):
     from instructmove_ms.executor import Workers
 

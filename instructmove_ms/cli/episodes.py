@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 import json
 
-from instructmove_ms.cli.common import _add_group
+from instructmove_ms.cli.common import _add_group, _add_set_version
 
 
 def _cmd_episodes_write(args: argparse.Namespace) -> int:
@@ -44,7 +44,7 @@ def _cmd_episodes_show(args: argparse.Namespace) -> int:
     from instructmove_ms.tasks import TASKS
 
     robot = args.robot or TASKS[args.task].default_robot
-    specs = heldout.load_set(args.task, robot, args.split)
+    specs = heldout.load_set(args.task, robot, args.split, version=args.set_version)
     if not 0 <= args.index < len(specs):
         raise ValueError(f"--index {args.index} outside the set's 0..{len(specs) - 1}")
     print(json.dumps(specs[args.index].to_dict(), indent=2))
@@ -65,7 +65,10 @@ def _cmd_episodes_sheet(args: argparse.Namespace) -> int:
     robot = args.robot or TASKS[args.task].default_robot
     for split in tqdm([args.split] if args.split else EVAL_SPLITS, desc="sheets", unit="sheet"):
         name = f"{TASKS[args.task].family}_{robot}_{split}.png"
-        tqdm.write(str(episode_sheet(args.task, robot, split, Path(args.out) / name, args.n)))
+        path = episode_sheet(
+            args.task, robot, split, Path(args.out) / name, args.n, version=args.set_version
+        )
+        tqdm.write(str(path))
     return 0
 
 
@@ -82,6 +85,7 @@ def add_parsers(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--robot", default=None)
     p.add_argument("--split", default="seen")
     p.add_argument("--index", type=int, default=0)
+    _add_set_version(p)
     p.set_defaults(func=_cmd_episodes_show)
     p = episodes_sub.add_parser(
         "sheet", help="contact sheet PNGs of stored episodes with their instructions"
@@ -91,4 +95,5 @@ def add_parsers(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--split", default=None, help="one split (default: every one)")
     p.add_argument("--n", type=int, default=20, help="episodes per sheet")
     p.add_argument("--out", required=True, help="folder for <family>_<robot>_<split>.png")
+    _add_set_version(p)
     p.set_defaults(func=_cmd_episodes_sheet)

@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 import json
 
-from instructmove_ms.cli.common import _add_workers, _workers
+from instructmove_ms.cli.common import _add_set_version, _add_workers, _workers
 
 SERVED = ("ws://", "wss://", "zmq://")  # a policy server's address
 
@@ -92,6 +92,7 @@ def _eval_configs(args: argparse.Namespace):
                     condition,
                     args.episodes,
                     perturbation=levels,
+                    version=args.set_version,
                 ),
             )
 
@@ -132,7 +133,14 @@ def _cmd_eval(args: argparse.Namespace) -> int:
         if robustness.is_sweep(args.perturb):
             raise ValueError("--write-config writes one perturbation setting, not a sweep")
         config = heldout.evaluator_config(
-            args.task, args.robot, args.split, args.condition, args.episodes, None, args.perturb
+            args.task,
+            args.robot,
+            args.split,
+            args.condition,
+            args.episodes,
+            None,
+            args.perturb,
+            args.set_version,
         )
         print(f"{len(config.episodes)} episodes -> {config.write(Path(args.write_config))}")
         return 0
@@ -187,6 +195,7 @@ def add_parsers(sub: argparse._SubParsersAction) -> None:
         "level into OUT/<axis>-<level> with a robustness report in OUT",
     )
     p.add_argument("--episodes", type=int, default=None, help="first N episodes of the set")
+    _add_set_version(p)
     p.add_argument(
         "--config", default=None, help="evaluate exactly the episodes of this evaluator config"
     )
