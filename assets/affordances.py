@@ -140,8 +140,10 @@ def grasp_affordances(inst: Instance, max_opening: float = 0.08) -> list[Grasp]:
         others = [p for p in solids if p is not part]
         center = section_center(part, z)
         for axis, width in _horizontal_widths(part):
-            if width >= 0.003 - EPS and _fits(width, max_opening) and not _blocked(
-                center, top, z, axis, width, others
+            if (
+                width >= 0.003 - EPS
+                and _fits(width, max_opening)
+                and not _blocked(center, top, z, axis, width, others)
             ):
                 grasps.append(_grasp(center, axis, width))
     return sorted(
