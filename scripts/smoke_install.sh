@@ -97,7 +97,8 @@ want = [
     "instructmove_ms/assets/__init__.py",
     "instructmove_ms/assets/taxonomy.yaml",
     "instructmove_ms/assets/snapshots/default.json",
-    "instructmove_ms/tasks/episodes/PickCategory-InstructMove/franka/seen.jsonl",
+    "instructmove_ms/tasks/episodes/v3/PickCategory-InstructMove/franka/seen.jsonl",
+    "instructmove_ms/tasks/episodes/v2/PickCategory-InstructMove/franka/seen.jsonl",
 ]
 missing = [n for n in want if n not in names]
 if missing:

@@ -101,3 +101,29 @@ def test_a_contact_sheet_shows_each_episode_from_the_scene_camera(tmp_path):
     assert (sheet[TILE_HEIGHT + band :, TILE_WIDTH:] == 255).all(), "no fourth episode"
     caption = sheet[TILE_HEIGHT : TILE_HEIGHT + band, :TILE_WIDTH]
     assert (caption < 128).any() and (caption == 255).mean() > 0.6, "dark text on white"
+
+
+def test_the_former_set_version_stays_loadable(tmp_path, capsys):
+    """Version 2, kept for results published on it, loads through the API and the CLI and
+    still passes the verifier; it holds the former wording of the same seeds."""
+    catalog = load_snapshot()
+    env_id, robot = "PlaceA2B-InstructMove", "franka"
+    old = heldout.load_set(env_id, robot, "seen", version=2)
+    new = heldout.load_set(env_id, robot, "seen")
+    assert len(old) == len(new) == heldout.EPISODES_PER_SET
+    assert sum(o.instruction != n.instruction for o, n in zip(old, new, strict=True)) > 50
+    assert all(verify_spec(spec, catalog) == [] for spec in old[:10])
+    config = heldout.evaluator_config(env_id, robot, "seen", episodes=3, version=2)
+    assert [e.spec for e in config.episodes] == old[:3]
+    path = tmp_path / "v2.json"
+    args = ["eval", "--task", env_id, "--robot", robot, "--episodes", "2", "--set-version", "2"]
+    assert main([*args, "--write-config", str(path)]) == 0
+    assert "2 episodes ->" in capsys.readouterr().out
+    written = heldout.EvaluatorConfig.load(path)
+    assert [e.spec.instruction for e in written.episodes] == [s.instruction for s in old[:2]]
+    show = ["episodes", "show", "--task", env_id, "--robot", robot, "--index", "4"]
+    assert main([*show, "--set-version", "2"]) == 0
+    assert json.loads(capsys.readouterr().out)["instruction"] == old[4].instruction
+    with pytest.raises(SystemExit) as exc:
+        main([*show, "--set-version", "4"])
+    assert exc.value.code == 2 and "invalid choice: 4" in capsys.readouterr().err
