@@ -25,7 +25,7 @@ from instructmove_ms.assets.expressions import all_phrases, colored
 from instructmove_ms.assets.identity import content_hash
 from instructmove_ms.assets.photometry import rendered_color, rendered_swatch
 from instructmove_ms.assets.vocab import COLORS
-from instructmove_ms.language import color_word
+from instructmove_ms.language import color_word, spaced
 
 
 def test_the_shipped_table_is_what_the_renderer_shows_for_the_whole_library():
@@ -95,7 +95,7 @@ def test_attribute_episodes_differ_in_what_the_camera_shows(attribute_env):
         attribute = spec.cue["attribute"]
         seen.add(attribute)
         if attribute == "color":
-            assert f" {color_word(shown_color(target))} " in f" {spec.instruction} "
+            assert f" {color_word(shown_color(target))} " in spaced(spec.instruction)
         if attribute == "material":
             others = [i for i in insts if i.uuid != target.uuid]
             assert all(look_differs(target.material, o.material) for o in others)

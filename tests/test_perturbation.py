@@ -14,7 +14,9 @@ import pytest
 import sapien
 import torch
 
+from instructmove_ms.assets.expressions import expressions
 from instructmove_ms.episode import EpisodeSpec
+from instructmove_ms.language import head, named_noun
 from instructmove_ms.perturbation import (
     AXES,
     LEVELS,
@@ -168,6 +170,26 @@ def test_a_spec_perturbed_already_is_not_perturbed_again(rgb_env):
         perturb(spec, {"layout": 2}, rgb_env.unwrapped._perturbation_context())
 
 
+def _no_unseen_phrase_passes(spec: EpisodeSpec, catalog) -> bool:
+    """True if every unseen phrase of the goal (or of the goal receptacle) says a noun whose
+    head word names another object of the scene: no rewording from that pool can pass the
+    verifier's noun rule."""
+    for k in (spec.target, spec.goal_destination):
+        if k is None or k < 0:
+            continue
+        inst = catalog[spec.objects[k].uuid]
+        heads = {
+            head(n)
+            for j, o in enumerate(spec.objects)
+            if j != k
+            and not (j in spec.candidates and k in spec.candidates and o.category == inst.category)
+            for n in catalog[o.uuid].nouns
+        }
+        if all(head(named_noun(inst, p)) in heads for p in expressions(inst)[1]):
+            return True
+    return False
+
+
 @pytest.mark.parametrize("env_id", sorted(TASKS))
 def test_every_perturbed_episode_of_200_passes_the_verifier(env_id):
     env = gym.make(env_id, obs_mode="state", render_backend="none")
@@ -180,13 +202,17 @@ def test_every_perturbed_episode_of_200_passes_the_verifier(env_id):
             try:
                 spec = unwrapped.sample_episode(seed, perturbation={axis: 3})
             except PerturbationError:
+                # only a rewording the unseen pool cannot give is refused (PickCategory
+                # seed 59: every unseen phrase of its watering can says "can", as does the
+                # can of coke beside it)
+                assert axis == "language", (seed, axis)
+                plain = unwrapped.sample_episode(seed)
+                assert _no_unseen_phrase_passes(plain, unwrapped.catalog), seed
                 refused += 1
                 continue
             assert verify(spec, unwrapped.catalog, unwrapped.task, opening) == [], (seed, axis)
     env.close()
-    # PlaceA2B seed 169: every unseen phrase of its lunch box shares "box" with the storage
-    # box beside it, so language:3 finds none the verifier passes
-    assert refused <= (1 if env_id == "PlaceA2B-InstructMove" else 0)
+    assert refused <= 4, "at most 2% of the 200 language draws"
 
 
 def test_eval_sweep_reports_every_level_against_the_same_episodes(tmp_path, capsys):
