@@ -251,6 +251,26 @@ def test_a_plain_env_starts_the_next_episode_at_each_reset_and_wraps_round():
         copied.claim(1000)
 
 
+def test_set_version_picks_the_stored_sets_an_env_plays():
+    """``set_version=2`` plays version 2's stored episodes (the instructions published
+    results were measured on), the default the current version's; a version the package
+    does not hold is refused by name."""
+    from instructmove_ms import heldout
+
+    for version in (2, heldout.SET_VERSION):
+        env = _env(set_version=version)
+        try:
+            stored = heldout.load_set(
+                EPISODES.env_id, EPISODES.robot, EPISODES.split, version=version
+            )
+            played = [e.spec.instruction for e in env.unwrapped.stored.config.episodes]
+            assert played == [s.instruction for s in stored]
+        finally:
+            env.close()
+    with pytest.raises(ValueError, match="set version 9"):
+        _env(set_version=9)
+
+
 def test_the_config_declares_what_the_env_gives_the_other_robot():
     """``describe`` (what the config declares before lerobot makes the env, without
     rendering) gives the cameras, in their order, and the dimension a rendering env has: the

@@ -92,8 +92,30 @@ def test_benchmark_options_are_checked() -> None:
         InstructMoveBenchmark(conditions=["sideways"])
     with pytest.raises(ValueError, match="'train'"):
         InstructMoveBenchmark(split="train")
+    with pytest.raises(ValueError, match="set version 1"):
+        InstructMoveBenchmark(set_version=1)
     bench = InstructMoveBenchmark(conditions=["all"], send_wrist_image=False)
     names = [t["name"] for t in bench.get_tasks()]
     assert len(names) == len(set(names)) == 4 * 5
     assert bench.get_metadata()["max_episodes_per_task"] == 100
     assert {"reach_pick", "place", "lift"} <= set(bench.get_metric_keys())
+
+
+def test_an_older_set_version_plays_its_own_stored_episodes() -> None:
+    """``set_version: 2`` reproduces results published on version 2: its tasks are named
+    apart and play version 2's instructions (which differ from the current version's)."""
+    from instructmove_ms import heldout
+    from instructmove_ms.integrations.vla_eval import InstructMoveBenchmark
+
+    env_id, split = "PickCategory-InstructMove", "unseen_category"
+    played = {}
+    for version in (2, None):
+        bench = InstructMoveBenchmark(tasks=[env_id], robot="franka", set_version=version)
+        (task,) = bench.get_tasks()
+        assert task.get("set_version") == version and task["name"].endswith("/v2") == bool(version)
+        episodes = bench._episodes(task["name"]).config.episodes
+        played[version] = [e.spec.instruction for e in episodes]
+    for version, key in ((2, 2), (heldout.SET_VERSION, None)):
+        stored = heldout.load_set(env_id, "franka", split, version=version)
+        assert played[key] == [s.instruction for s in stored]
+    assert played[2] != played[None]

@@ -120,9 +120,12 @@ class StoredEpisodesEnv(gym.Env):
         results: str | None = None,
         hold_after_end: bool = False,
         schedule: EpisodeSchedule | None = None,
+        set_version: int | None = None,
     ) -> None:
         self.stored = StoredEpisodes(
-            EpisodeSet(task, robot, split, condition, perturb), (width, height), render_backend
+            EpisodeSet(task, robot, split, condition, perturb, set_version),
+            (width, height),
+            render_backend,
         )
         self.schedule = schedule or EpisodeSchedule(episode_index, stride)
         horizon = self.stored.max_steps
@@ -228,7 +231,12 @@ for _env_id in TASKS:
 
 @cache
 def describe(
-    task: str, robot: str | None, split: str, condition: str, perturb: str | None
+    task: str,
+    robot: str | None,
+    split: str,
+    condition: str,
+    perturb: str | None,
+    set_version: int | None = None,
 ) -> tuple[str, tuple[str, ...], int]:
     """(robot, cameras, interface dimension) of a stored set, from its env without rendering
     (LeRobot's config declares the features before it makes the env)."""
@@ -236,7 +244,10 @@ def describe(
 
     from .. import heldout
 
-    config = heldout.evaluator_config(task, robot, split, condition, perturbation=perturb)
+    version = heldout.SET_VERSION if set_version is None else set_version
+    config = heldout.evaluator_config(
+        task, robot, split, condition, perturbation=perturb, version=version
+    )
     kwargs = {"obs_mode": "state", "control_mode": CONTROL_MODE, "render_backend": "none"}
     env = gym.make(config.env_id, **config.env_kwargs, **kwargs)
     try:
@@ -273,7 +284,8 @@ if _configs is not None:
     class InstructMoveEnv(_configs.EnvConfig):
         """``--env.type=instructmove``: the stored held-out episodes of ``task`` (an env id)
         for ``robot`` (None: the task's own) on ``split`` under ``condition`` and the
-        perturbation levels ``perturb`` (e.g. ``lighting:2,camera:1``), from
+        perturbation levels ``perturb`` (e.g. ``lighting:2,camera:1``), of set version
+        ``set_version`` (None: the current; an older one reproduces published results), from
         ``episode_index`` on, cameras at ``width`` x ``height``. ``episode_length`` cuts the
         horizon (None: the stored one, as the benchmark scores); ``results`` is a JSON-lines
         file each finished episode's InstructMove score row is appended to."""
@@ -283,6 +295,7 @@ if _configs is not None:
         split: str = "unseen_category"
         condition: str = "normal"
         perturb: str | None = None
+        set_version: int | None = None
         episode_index: int = 0
         width: int = SIZE
         height: int = SIZE
@@ -304,7 +317,7 @@ if _configs is not None:
             if self.width < 1 or self.height < 1:
                 raise ValueError(f"width and height must be positive: {self.width}x{self.height}")
             robot, cameras, dim = describe(
-                self.task, self.robot, self.split, self.condition, self.perturb
+                self.task, self.robot, self.split, self.condition, self.perturb, self.set_version
             )
             self.robot = robot
             image = (self.height, self.width, 3)
@@ -337,6 +350,7 @@ if _configs is not None:
                 "split": self.split,
                 "condition": self.condition,
                 "perturb": self.perturb,
+                "set_version": self.set_version,
                 "width": self.width,
                 "height": self.height,
                 "episode_length": self.episode_length,

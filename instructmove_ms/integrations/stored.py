@@ -24,13 +24,15 @@ CONTROL_MODE = "pd_joint_pos"  # the policy interface's actions
 
 @dataclass(frozen=True)
 class EpisodeSet:
-    """Which stored episodes: a task's held-out set under a condition and perturbation."""
+    """Which stored episodes: a task's held-out set under a condition and perturbation, of
+    set version ``version`` (None: the current one)."""
 
     env_id: str
     robot: str | None = None  # None: the task's default robot
     split: str = "unseen_category"
     condition: str = "normal"
     perturb: str | None = None  # perturbation levels, e.g. "lighting:2,camera:1"
+    version: int | None = None
 
     @property
     def name(self) -> str:
@@ -40,6 +42,8 @@ class EpisodeSet:
             parts.append(self.condition)
         if self.perturb:
             parts.append(self.perturb.replace(":", "").replace(",", "+"))
+        if self.version is not None:
+            parts.append(f"v{self.version}")
         return "/".join(parts)
 
 
@@ -73,6 +77,7 @@ class StoredEpisodes:
             episodes.split,
             episodes.condition,
             perturbation=episodes.perturb,
+            version=heldout.SET_VERSION if episodes.version is None else episodes.version,
         )
         self.image_size, self.render_backend = tuple(image_size), render_backend
         self.env: Any = None

@@ -30,6 +30,7 @@ _base = require("vla_eval.benchmarks.base", "vla-eval", "the vla-eval benchmark"
 _specs = require("vla_eval.specs", "vla-eval", "the vla-eval benchmark")
 
 from ..episode import CONDITIONS  # noqa: E402  (after the optional import's check)
+from ..heldout import SET_VERSIONS  # noqa: E402
 from ..obs_formats import SIZE  # noqa: E402
 from ..splits import EVAL_SPLITS  # noqa: E402
 from ..tasks import TASKS  # noqa: E402
@@ -45,7 +46,9 @@ SCORES = ("success", "success_at_end", "stage_score")
 class InstructMoveBenchmark(_base.StepBenchmark):
     """The held-out sets of ``tasks`` (env ids; default every family) for ``robot``
     (default each task's own) on ``split``, under each of ``conditions`` (default
-    ``normal``; ``["all"]`` for the five), perturbed at ``perturb`` (e.g. ``lighting:2``)."""
+    ``normal``; ``["all"]`` for the five), perturbed at ``perturb`` (e.g. ``lighting:2``),
+    from the stored sets of ``set_version`` (default the current; an older one reproduces
+    results published on it)."""
 
     render_backends: ClassVar[frozenset[str]] = frozenset(RENDER_BACKENDS)
     render_backend: ClassVar[str | None] = None
@@ -67,6 +70,7 @@ class InstructMoveBenchmark(_base.StepBenchmark):
         send_state: bool = True,
         send_wrist_image: bool = True,
         stop_on_success: bool = False,
+        set_version: int | None = None,
     ) -> None:
         super().__init__()
         conditions = list(CONDITIONS) if conditions in (["all"], "all") else conditions
@@ -75,8 +79,17 @@ class InstructMoveBenchmark(_base.StepBenchmark):
             check_choice("task", env_id, TASKS)
         for condition in conditions or ():
             check_choice("condition", condition, CONDITIONS)
+        if set_version is not None:
+            check_choice("set version", set_version, SET_VERSIONS)
         self.sets = [
-            EpisodeSet(env_id, robot or TASKS[env_id].default_robot, split, condition, perturb)
+            EpisodeSet(
+                env_id,
+                robot or TASKS[env_id].default_robot,
+                split,
+                condition,
+                perturb,
+                set_version,
+            )
             for env_id in tasks or list(TASKS)
             for condition in conditions or ["normal"]
         ]
@@ -95,6 +108,7 @@ class InstructMoveBenchmark(_base.StepBenchmark):
                 "split": s.split,
                 "condition": s.condition,
                 **({"perturb": s.perturb} if s.perturb else {}),
+                **({"set_version": s.version} if s.version is not None else {}),
             }
             for s in self.sets
         ]
@@ -146,9 +160,12 @@ class InstructMoveBenchmark(_base.StepBenchmark):
         return {"max_steps": horizon, "max_episodes_per_task": self._stored_count()}
 
     def _stored_count(self) -> int:
-        from ..heldout import load_set
+        from ..heldout import SET_VERSION, load_set
 
-        return min(len(load_set(s.env_id, s.robot, s.split)) for s in self.sets)
+        return min(
+            len(load_set(s.env_id, s.robot, s.split, version=s.version or SET_VERSION))
+            for s in self.sets
+        )
 
     def get_action_spec(self) -> dict:
         return {"joints": _specs.DimSpec("joints", 0, "joint_pos_absolute")}
