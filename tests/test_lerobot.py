@@ -296,7 +296,7 @@ def test_the_loop_export_serve_evaluate_scores_the_demos(sources, dataset_v21, t
             assert group["success"] == 1.0 and group["success_at_end"] == 1.0, group
 
 
-#: A small ACT (no pretrained backbone) that lerobot-train trains on 2 CPU cores in a minute.
+#: A small ACT (no pretrained backbone) that lerobot-train trains on 2 CPU cores in two minutes.
 ACT = [
     "--policy.type=act",
     "--policy.pretrained_backbone_weights=null",
@@ -314,7 +314,7 @@ ACT = [
     "--policy.device=cpu",
     "--policy.push_to_hub=false",
 ]
-TRAIN_STEPS = 150
+TRAIN_STEPS = 300
 
 
 def test_lerobot_trains_on_the_export_and_its_checkpoint_is_served_and_evaluated(
@@ -323,7 +323,7 @@ def test_lerobot_trains_on_the_export_and_its_checkpoint_is_served_and_evaluated
     """The loop a user runs: lerobot-train on our v3.0 export (the loss falls), the
     checkpoint served with openpi's protocol by ``instructmove serve-lerobot`` (lerobot's own
     pre/post-processors), and ``instructmove eval`` on a stored held-out episode: every row
-    scored, none with an error (no success is expected of a minute of CPU training)."""
+    scored, none with an error (no success is expected of two minutes of CPU training)."""
     out = tmp_path / "train"
     argv = [str(LEROBOT_PYTHON.parent / "lerobot-train"), f"--dataset.repo_id={REPO}"]
     argv += [f"--dataset.root={dataset}", *ACT, f"--steps={TRAIN_STEPS}", "--batch_size=8"]
