@@ -43,12 +43,7 @@ def rows(policy: str, env_id: str, robot: str, specs: list[EpisodeSpec], out: Pa
     """The result rows of ``policy`` on ``specs`` (none for none)."""
     if not specs:
         return []
-    config = heldout.EvaluatorConfig(
-        env_id=env_id,
-        max_episode_steps=TASKS[env_id].max_episode_steps,
-        env_kwargs={"robot_uids": robot, "split": specs[0].split},
-        episodes=tuple(heldout.ConfigEpisode(k, s.seed, s) for k, s in enumerate(specs)),
-    )
+    config = heldout.config_of(env_id, robot, specs[0].split, "normal", specs)
     evaluate_config(REFERENCE_POLICIES[policy](), config, out)
     return [json.loads(line) for line in (out / "episodes.jsonl").read_text().splitlines()]
 

@@ -9,7 +9,7 @@ import cv2
 import numpy as np
 
 from .files import atomic_path
-from .heldout import SET_VERSION, load_set
+from .heldout import load_set
 from .perturb_sheet import sheet_env
 from .video import FONT, wrap
 
@@ -36,7 +36,7 @@ def episode_sheet(
     count: int = 20,
     columns: int = 4,
     folder: Path | None = None,
-    version: int = SET_VERSION,
+    version: int | None = None,
 ) -> Path:
     """Write a PNG grid of the first ``count`` stored episodes of (env, robot, split), from
     the package's sets of ``version`` or those in ``folder``."""

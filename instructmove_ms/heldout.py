@@ -41,14 +41,15 @@ SET_VERSION = 3
 SEEDS_PER_EPISODE = 5
 
 
-def default_folder(version: int = SET_VERSION) -> Path:
-    """The package's folder of the stored sets of ``version``."""
+def default_folder(version: int | None = None) -> Path:
+    """The package's folder of the stored sets of ``version`` (None: the current one)."""
+    version = SET_VERSION if version is None else version
     check_choice("set version", version, SET_VERSIONS)
     return Path(str(resources.files("instructmove_ms.tasks").joinpath(f"episodes/v{version}")))
 
 
 def set_path(
-    env_id: str, robot: str, split: str, folder: Path | None = None, version: int = SET_VERSION
+    env_id: str, robot: str, split: str, folder: Path | None = None, version: int | None = None
 ) -> Path:
     """Where the set (env, robot, split) lies: under ``folder`` if given, else in the
     package's sets of ``version``."""
@@ -61,7 +62,7 @@ def write_set(path: Path, specs: list[EpisodeSpec]) -> Path:
 
 
 def load_set(
-    env_id: str, robot: str, split: str, folder: Path | None = None, version: int = SET_VERSION
+    env_id: str, robot: str, split: str, folder: Path | None = None, version: int | None = None
 ) -> list[EpisodeSpec]:
     """The stored held-out episodes of (env, robot, split), from ``folder`` or the package's
     sets of ``version``."""
@@ -244,7 +245,7 @@ def evaluator_config(
     episodes: int | None = None,
     folder: Path | None = None,
     perturbation: dict[str, int] | str | None = None,
-    version: int = SET_VERSION,
+    version: int | None = None,
 ) -> EvaluatorConfig:
     """The evaluator config of the first ``episodes`` of the stored set of ``version`` (all
     by default), each re-rendered for ``condition`` (the same scene with that condition's
@@ -259,6 +260,13 @@ def evaluator_config(
     levels = parse_levels(perturbation)
     if condition != "normal" or levels:
         specs = _respec(env_id, robot, split, condition, levels, specs)
+    return config_of(env_id, robot, split, condition, specs)
+
+
+def config_of(
+    env_id: str, robot: str, split: str, condition: str, specs: list[EpisodeSpec]
+) -> EvaluatorConfig:
+    """The evaluator config that plays ``specs`` in this order (episode ids 0, 1, ...)."""
     return EvaluatorConfig(
         env_id=env_id,
         max_episode_steps=TASKS[env_id].max_episode_steps,

@@ -58,7 +58,7 @@ def _heads(catalog: Catalog, spec: EpisodeSpec, k: int) -> set[str]:
     return {head(n) for n in catalog[spec.objects[k].uuid].nouns}
 
 
-def _ambiguous_nouns(spec: EpisodeSpec, catalog: Catalog) -> list[str]:
+def ambiguous_nouns(spec: EpisodeSpec, catalog: Catalog) -> list[str]:
     """Nouns of the instruction whose head word also names another object of the scene
     (same-category candidates excepted: the cue separates them)."""
     problems = []
@@ -120,7 +120,7 @@ def verify(
             problems.append(
                 f"instruction names destinations {fits}, not exactly {spec.goal_destination}"
             )
-    return problems + _ambiguous_nouns(spec, catalog)
+    return problems + ambiguous_nouns(spec, catalog)
 
 
 def _named(catalog: Catalog, spec: EpisodeSpec, k: int) -> str | None:

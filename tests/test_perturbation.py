@@ -16,7 +16,6 @@ import torch
 
 from instructmove_ms.assets.expressions import expressions
 from instructmove_ms.episode import EpisodeSpec
-from instructmove_ms.language import head, named_noun
 from instructmove_ms.perturbation import (
     AXES,
     LEVELS,
@@ -26,7 +25,7 @@ from instructmove_ms.perturbation import (
     perturb,
 )
 from instructmove_ms.tasks import TASKS
-from instructmove_ms.verify import verify
+from instructmove_ms.verify import ambiguous_nouns, verify
 
 SEED = 3
 
@@ -171,21 +170,15 @@ def test_a_spec_perturbed_already_is_not_perturbed_again(rgb_env):
 
 
 def _no_unseen_phrase_passes(spec: EpisodeSpec, catalog) -> bool:
-    """True if every unseen phrase of the goal (or of the goal receptacle) says a noun whose
-    head word names another object of the scene: no rewording from that pool can pass the
-    verifier's noun rule."""
+    """True if every unseen phrase of the goal (or of the goal receptacle), said in an
+    instruction, fails the verifier's noun rule (its head word names another object of the
+    scene): no rewording from that pool can pass."""
     for k in (spec.target, spec.goal_destination):
         if k is None or k < 0:
             continue
-        inst = catalog[spec.objects[k].uuid]
-        heads = {
-            head(n)
-            for j, o in enumerate(spec.objects)
-            if j != k
-            and not (j in spec.candidates and k in spec.candidates and o.category == inst.category)
-            for n in catalog[o.uuid].nouns
-        }
-        if all(head(named_noun(inst, p)) in heads for p in expressions(inst)[1]):
+        phrases = expressions(catalog[spec.objects[k].uuid])[1]
+        said = [dataclasses.replace(spec, instruction=f"pick up the {p}") for p in phrases]
+        if all(ambiguous_nouns(s, catalog) for s in said):
             return True
     return False
 

@@ -244,9 +244,8 @@ def describe(
 
     from .. import heldout
 
-    version = heldout.SET_VERSION if set_version is None else set_version
     config = heldout.evaluator_config(
-        task, robot, split, condition, perturbation=perturb, version=version
+        task, robot, split, condition, perturbation=perturb, version=set_version
     )
     kwargs = {"obs_mode": "state", "control_mode": CONTROL_MODE, "render_backend": "none"}
     env = gym.make(config.env_id, **config.env_kwargs, **kwargs)

@@ -77,7 +77,7 @@ class StoredEpisodes:
             episodes.split,
             episodes.condition,
             perturbation=episodes.perturb,
-            version=heldout.SET_VERSION if episodes.version is None else episodes.version,
+            version=episodes.version,
         )
         self.image_size, self.render_backend = tuple(image_size), render_backend
         self.env: Any = None

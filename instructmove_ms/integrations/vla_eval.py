@@ -160,12 +160,9 @@ class InstructMoveBenchmark(_base.StepBenchmark):
         return {"max_steps": horizon, "max_episodes_per_task": self._stored_count()}
 
     def _stored_count(self) -> int:
-        from ..heldout import SET_VERSION, load_set
+        from ..heldout import load_set
 
-        return min(
-            len(load_set(s.env_id, s.robot, s.split, version=s.version or SET_VERSION))
-            for s in self.sets
-        )
+        return min(len(load_set(s.env_id, s.robot, s.split, version=s.version)) for s in self.sets)
 
     def get_action_spec(self) -> dict:
         return {"joints": _specs.DimSpec("joints", 0, "joint_pos_absolute")}
