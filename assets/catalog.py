@@ -15,6 +15,7 @@ import yaml
 from .design import Design
 from .generators import GENERATORS
 from .parts import Part, Region, union_bounds
+from .textures import Texture
 from .vocab import material_word
 
 #: Namespace of instance uuids: uuid5(NAMESPACE, "<category>/<index>") never changes.
@@ -117,6 +118,7 @@ class Instance:
                     "pos": tuple(p["pos"]),
                     "quat": tuple(p["quat"]),
                     "rgb": tuple(p["rgb"]),
+                    "texture": _texture_of(p.get("texture")),
                 }
             )
             for p in record["parts"]
@@ -156,6 +158,12 @@ class Instance:
             },
             "held_out": self.held_out,
         }
+
+
+def _texture_of(record: dict | None) -> Texture | None:
+    if record is None:
+        return None
+    return Texture(record["pattern"], tuple(record["inks"]), record["motif"])
 
 
 def instance_uuid(category: str, index: int) -> str:

@@ -9,6 +9,7 @@ import numpy as np
 
 from .parts import (
     IDENTITY,
+    TEXTURED_SHAPES,
     X_TO_Y,
     X_TO_Z,
     Part,
@@ -18,9 +19,12 @@ from .parts import (
     rest_offset,
     shifted,
 )
+from .textures import Texture
 from .vocab import COLORS
 
 Point = tuple[float, float, float]
+#: What a material shows of itself on box and cylinder parts that print nothing else.
+MATERIAL_TEXTURES = {"wood": Texture("grain"), "fabric": Texture("weave")}
 
 
 @dataclass(frozen=True)
@@ -68,7 +72,10 @@ class Design:
         quat=IDENTITY,
         solid_fraction=1.0,
         visual_only=False,
+        texture=None,
     ):
+        if texture is None and shape in TEXTURED_SHAPES:
+            texture = MATERIAL_TEXTURES.get(material)
         self.parts.append(
             Part(
                 name=name,
@@ -81,6 +88,7 @@ class Design:
                 rgb=self.shade(color),
                 solid_fraction=solid_fraction,
                 visual_only=visual_only,
+                texture=texture,
             )
         )
 

@@ -78,7 +78,10 @@ def counted(part: Part) -> dict[str, tuple]:
 def _part_record(part: Part) -> dict:
     numbers = {key: quantise(v, q) for key, (v, q) in counted(part).items()}
     words = {k: getattr(part, k) for k in ("name", "shape", "material", "color", "visual_only")}
-    return {**words, **numbers}
+    record = {**words, **numbers}
+    if part.texture is not None:  # counted only where set: untextured parts hash as before
+        record["texture"] = part.texture.record()
+    return record
 
 
 def _traits(inst: Instance) -> list:
@@ -116,7 +119,9 @@ def content_hash(inst: Instance) -> str:
 def exact_hash(inst: Instance) -> str:
     """The scheme-1 hash (every float to its last bit), to read snapshots written by it."""
     payload = {
-        "parts": [{k: v for k, v in asdict(p).items() if k != "mesh"} for p in inst.parts],
+        "parts": [
+            {k: v for k, v in asdict(p).items() if k not in ("mesh", "texture")} for p in inst.parts
+        ],
         "traits": [inst.colors, inst.material, inst.shape, inst.nouns]
         + [inst.is_graspable, inst.is_container],
         "interior": None if inst.interior is None else asdict(inst.interior),

@@ -7,6 +7,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .textures import Texture
 from .vocab import COLORS, MATERIALS
 
 #: shape -> number of size parameters. Cylinders and capsules run along the local x axis
@@ -21,6 +22,9 @@ PRIMITIVES: dict[str, int] = {
     "ellipsoid": 3,
     "mesh": 3,
 }
+
+#: The shapes a texture can go on (they have texture coordinates: see ``uv_meshes``).
+TEXTURED_SHAPES = ("box", "cylinder")
 
 
 @dataclass(frozen=True)
@@ -39,6 +43,7 @@ class Part:
     visual_only: bool = False  # decoration (a label, a print): no collision, no mass
     mesh: str = ""  # OBJ file of a "mesh" part
     mesh_volume: float = 0.0  # volume of a "mesh" part's convex piece
+    texture: Texture | None = None  # print or pattern on a box or cylinder (a look only)
 
     def __post_init__(self) -> None:
         if self.shape not in PRIMITIVES:
@@ -51,6 +56,11 @@ class Part:
             raise ValueError(f"unknown colour {self.color!r}; allowed: {sorted(COLORS)}")
         if (self.shape == "mesh") != bool(self.mesh):
             raise ValueError(f"part {self.name!r}: a mesh file goes with the 'mesh' shape only")
+        if self.texture is not None and self.shape not in TEXTURED_SHAPES:
+            raise ValueError(
+                f"part {self.name!r}: a {self.shape} carries no texture; "
+                f"allowed: {list(TEXTURED_SHAPES)}"
+            )
 
     @property
     def volume(self) -> float:

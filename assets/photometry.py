@@ -3,6 +3,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Iterable
 from functools import cache
 from pathlib import Path
@@ -40,15 +41,15 @@ class _Stage:
         ground.build_static(name="table")
         self.camera = add_camera(self.scene, "camera", WIDTH, HEIGHT, np.deg2rad(45), 0.01, 10)
 
-    def look(self, builder: sapien.ActorBuilder, height: float) -> np.ndarray:
+    def look(self, builder: sapien.ActorBuilder, height: float, reach: float = 0.32) -> np.ndarray:
         """The Lab pixels of the actor ``builder`` makes, standing on the table, seen from
-        each of ``VIEWS`` 0.45 m away, 45 degrees above."""
+        each of ``VIEWS`` ``reach`` * sqrt(2) away (0.45 m), 45 degrees above."""
         builder.initial_pose = sapien.Pose([0, 0, 0.001])
         actor = builder.build_kinematic(name="subject")
         target = np.array([0.0, 0.0, height / 2])
         pixels = []
         for azimuth in np.deg2rad(VIEWS):
-            eye = target + 0.32 * np.array([np.cos(azimuth), np.sin(azimuth), 1.0])
+            eye = target + reach * np.array([np.cos(azimuth), np.sin(azimuth), 1.0])
             self.camera.entity.set_pose(look_at(eye, target))
             self.scene.update_render()
             self.camera.take_picture()
@@ -70,6 +71,18 @@ def rendered_color(instance: Instance) -> tuple[float, float, float]:
     pixels = _stage().look(actor_builder(_stage().scene, instance), float(hi[2] - lo[2]))
     if not len(pixels):
         raise ValueError(f"{instance.uuid} ({instance.category}) covers no pixel of the camera")
+    return tuple(round(float(v), 2) for v in dominant(pixels))
+
+
+def rendered_part(part: Part) -> tuple[float, ...]:
+    """The dominant rendered colour of ``part`` alone (moved to stand on the table, the
+    camera as near as its size asks), Lab."""
+    lo, hi = part.bounds()
+    pos = np.asarray(part.pos) - np.array([(lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2, lo[2]])
+    builder = _stage().scene.create_actor_builder()
+    add_part(builder, dataclasses.replace(part, pos=tuple(float(v) for v in pos)))
+    reach = max(1.5 * float(np.median(hi - lo)), 0.03)  # near enough for a thin strip
+    pixels = _stage().look(builder, float(hi[2] - lo[2]), reach)
     return tuple(round(float(v), 2) for v in dominant(pixels))
 
 

@@ -5,12 +5,15 @@ from __future__ import annotations
 from functools import cache
 from importlib import resources
 
+import numpy as np
 import sapien
 import sapien.physx as physx
 import sapien.render as render
 
 from .catalog import Instance
 from .parts import Part
+from .textures import Texture, image
+from .uv_meshes import mesh_path
 from .vocab import MATERIALS
 
 
@@ -25,23 +28,36 @@ def physical_material(name: str) -> physx.PhysxMaterial:
     return physx.PhysxMaterial(static_friction=mu, dynamic_friction=0.9 * mu, restitution=0.0)
 
 
+@cache
+def _texture(texture: Texture, rgb: tuple[float, float, float]) -> render.RenderTexture2D:
+    """The texture's image on colour ``rgb``, in linear storage (``srgb=False``) as the
+    plain parts' base colours are read, so a printed part's ground renders as a plain
+    part of its colour does."""
+    return render.RenderTexture2D(np.array(image(texture, rgb)), "R8G8B8A8Unorm", srgb=False)
+
+
 def render_material(part: Part) -> render.RenderMaterial:
     m = MATERIALS[part.material]
     alpha = 1.0 - 0.6 * m.transmission
-    return render.RenderMaterial(
+    material = render.RenderMaterial(
         base_color=[*part.rgb, alpha],
         metallic=m.metallic,
         roughness=m.roughness,
         specular=0.5,
     )
+    if part.texture is not None:
+        material.base_color = [1.0, 1.0, 1.0, alpha]
+        material.base_color_texture = _texture(part.texture, part.rgb)
+    return material
 
 
-def add_part(builder: sapien.ActorBuilder, part: Part) -> None:
-    """Add one part's visual and (unless decorative) collision shape to ``builder``."""
-    pose = sapien.Pose(p=list(part.pos), q=list(part.quat))
+def _add_visual(builder: sapien.ActorBuilder, part: Part, pose: sapien.Pose) -> None:
     mat = render_material(part)
     s = part.size
-    if part.shape == "box":
+    if part.texture is not None:  # a box or a cylinder: the unit mesh with UVs, scaled
+        scale = list(s) if part.shape == "box" else [s[1], s[0], s[0]]
+        builder.add_visual_from_file(str(mesh_path(part.shape)), pose, scale=scale, material=mat)
+    elif part.shape == "box":
         builder.add_box_visual(pose, half_size=s, material=mat)
     elif part.shape == "sphere":
         builder.add_sphere_visual(pose, radius=s[0], material=mat)
@@ -53,6 +69,13 @@ def add_part(builder: sapien.ActorBuilder, part: Part) -> None:
         builder.add_visual_from_file(part.mesh, pose, material=mat)
     else:
         builder.add_visual_from_file(_unit_sphere_mesh(), pose, scale=s, material=mat)
+
+
+def add_part(builder: sapien.ActorBuilder, part: Part) -> None:
+    """Add one part's visual and (unless decorative) collision shape to ``builder``."""
+    pose = sapien.Pose(p=list(part.pos), q=list(part.quat))
+    _add_visual(builder, part, pose)
+    s = part.size
     if part.visual_only:
         return
     kw = dict(material=physical_material(part.material), density=part.density)

@@ -1,0 +1,259 @@
+"""Printed and patterned looks: a part's texture recipe and the image it draws.
+
+A :class:`Texture` is a small recipe (a pattern, the vocabulary colours printed on the
+part's own colour, and a pictogram), so identity hashes the recipe, not pixels. Its image
+is drawn when an actor is built (``image``): the part's colour is the ground and covers
+most of the image, so the part's annotated colour stays its dominant colour. Images are
+square and cover every face of a box and the side of a cylinder (wrapped around it); a
+cylinder's round ends show the image's inscribed disc (see ``uv_meshes``).
+
+Nothing here names a brand: a "wordmark" is a row of letter-like strokes.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from functools import cache
+
+import cv2
+import numpy as np
+
+from .vocab import COLORS
+
+SIZE = 256  # pixels on a side
+#: Pictograms a label can carry.
+MOTIFS = ("", "fruit", "chip", "leaf", "cookie", "cheese", "drop", "tooth", "staple")
+
+
+@dataclass(frozen=True)
+class Texture:
+    """What a part has printed on it: ``pattern`` (one of ``PATTERNS``) in ``inks``
+    (vocabulary colours, on the part's own colour), with pictogram ``motif``."""
+
+    pattern: str
+    inks: tuple[str, ...] = ()
+    motif: str = ""
+
+    def __post_init__(self) -> None:
+        if self.pattern not in PATTERNS:
+            raise ValueError(
+                f"unknown texture pattern {self.pattern!r}; allowed: {sorted(PATTERNS)}"
+            )
+        bad = [c for c in self.inks if c not in COLORS]
+        if bad:
+            raise ValueError(f"unknown ink colour {bad[0]!r}; allowed: {sorted(COLORS)}")
+        if self.motif not in MOTIFS:
+            raise ValueError(f"unknown motif {self.motif!r}; allowed: {list(MOTIFS)}")
+        if len(self.inks) < NEEDED_INKS[self.pattern]:
+            raise ValueError(
+                f"pattern {self.pattern!r} prints {NEEDED_INKS[self.pattern]} inks, "
+                f"got {list(self.inks)}"
+            )
+
+    def record(self) -> dict:
+        return {"pattern": self.pattern, "inks": list(self.inks), "motif": self.motif}
+
+
+def _bgr(rgb) -> tuple[int, int, int, int]:
+    """An RGBA fill for OpenCV drawing on an RGBA image."""
+    return tuple(int(round(255 * float(v))) for v in rgb) + (255,)
+
+
+def _shade(rgb, factor: float) -> tuple[float, float, float]:
+    return tuple(float(min(max(v * factor, 0.0), 1.0)) for v in rgb)
+
+
+def _wordmark(img: np.ndarray, center: tuple[int, int], width: int, height: int, ink) -> None:
+    """A row of letter-like strokes (no real letters: nothing to read, nothing to brand)."""
+    color, thick = _bgr(ink), max(2, height // 6)
+    letters = 5
+    step = width / letters
+    x0, y0 = center[0] - width / 2, center[1]
+    for k in range(letters):
+        cx = int(x0 + step * (k + 0.5))
+        rx, ry = int(step * 0.32), int(height * 0.32)
+        if k % 3 == 0:  # an "o"
+            cv2.ellipse(img, (cx, y0), (rx, ry), 0, 0, 360, color, thick, cv2.LINE_AA)
+        elif k % 3 == 1:  # an "l" with a foot
+            cv2.line(img, (cx, y0 - int(height * 0.5)), (cx, y0 + ry), color, thick, cv2.LINE_AA)
+            cv2.line(img, (cx, y0 + ry), (cx + rx, y0 + ry), color, thick, cv2.LINE_AA)
+        else:  # an "n"
+            cv2.ellipse(img, (cx, y0), (rx, ry), 0, 180, 360, color, thick, cv2.LINE_AA)
+            for side in (-rx, rx):
+                cv2.line(img, (cx + side, y0), (cx + side, y0 + ry), color, thick, cv2.LINE_AA)
+
+
+def _motif(img: np.ndarray, motif: str, center: tuple[int, int], radius: int, ink) -> None:
+    """Pictogram ``motif`` in ``ink`` (its own details in fixed colours)."""
+    c, r = center, radius
+    green, dark, white = _bgr(COLORS["green"]), _bgr(COLORS["brown"]), _bgr(COLORS["white"])
+    if motif == "fruit":
+        cv2.circle(img, c, r, _bgr(ink), -1, cv2.LINE_AA)
+        cv2.circle(img, (c[0] - r // 3, c[1] - r // 3), max(2, r // 5), white, -1, cv2.LINE_AA)
+        cv2.ellipse(img, (c[0] + r // 3, c[1] - r), (r // 2, r // 5), -30, 0, 360, green, -1)
+    elif motif == "chip":
+        pts = [
+            (
+                c[0] + int(r * math.cos(a) * (1 + 0.08 * math.sin(5 * a))),
+                c[1] + int(0.7 * r * math.sin(a)),
+            )
+            for a in np.linspace(0, 2 * math.pi, 40, endpoint=False)
+        ]
+        cv2.fillPoly(img, [np.array(pts, np.int32)], _bgr(ink), cv2.LINE_AA)
+        cv2.ellipse(img, c, (r // 2, r // 5), 10, 200, 340, _bgr(_shade(ink, 0.75)), 2)
+    elif motif == "leaf":
+        cv2.ellipse(img, c, (r, r // 2), -35, 0, 360, _bgr(ink), -1, cv2.LINE_AA)
+        cv2.line(img, (c[0] - r // 2, c[1] + r // 3), (c[0] + r // 2, c[1] - r // 3), white, 2)
+    elif motif == "cookie":
+        cv2.circle(img, c, r, _bgr(ink), -1, cv2.LINE_AA)
+        for a in np.linspace(0.3, 2 * math.pi, 6, endpoint=False):
+            p = (c[0] + int(0.55 * r * math.cos(a)), c[1] + int(0.55 * r * math.sin(a)))
+            cv2.circle(img, p, max(2, r // 8), dark, -1, cv2.LINE_AA)
+    elif motif == "cheese":
+        tri = np.array(
+            [(c[0] - r, c[1] + r // 2), (c[0] + r, c[1] + r // 2), (c[0] + r, c[1] - r // 2)]
+        )
+        cv2.fillPoly(img, [tri.astype(np.int32)], _bgr(ink), cv2.LINE_AA)
+        cv2.circle(img, (c[0] + r // 2, c[1] + r // 6), max(2, r // 6), _bgr(_shade(ink, 0.8)), -1)
+    elif motif == "drop":
+        cv2.circle(img, (c[0], c[1] + r // 3), int(r * 0.6), _bgr(ink), -1, cv2.LINE_AA)
+        tri = np.array(
+            [
+                (c[0] - int(r * 0.55), c[1] + r // 5),
+                (c[0] + int(r * 0.55), c[1] + r // 5),
+                (c[0], c[1] - r),
+            ]
+        )
+        cv2.fillPoly(img, [tri.astype(np.int32)], _bgr(ink), cv2.LINE_AA)
+    elif motif == "staple":
+        pts = np.array(
+            [
+                (c[0] - r, c[1] + r // 2),
+                (c[0] - r, c[1] - r // 3),
+                (c[0] + r, c[1] - r // 3),
+                (c[0] + r, c[1] + r // 2),
+            ]
+        )
+        cv2.polylines(img, [pts.astype(np.int32)], False, _bgr(ink), max(3, r // 4), cv2.LINE_AA)
+    elif motif == "tooth":
+        cv2.ellipse(img, (c[0], c[1] - r // 4), (r, int(r * 0.6)), 0, 180, 360, _bgr(ink), -1)
+        cv2.rectangle(img, (c[0] - r, c[1] - r // 4), (c[0] + r, c[1] + r // 5), _bgr(ink), -1)
+        for side in (-1, 1):
+            root = (c[0] + side * r // 2, c[1] + r // 2)
+            cv2.ellipse(img, root, (r // 3, r // 2), 0, 0, 360, _bgr(ink), -1, cv2.LINE_AA)
+
+
+def _ground(img: np.ndarray) -> np.ndarray:
+    return img[0, 0, :3] / 255.0
+
+
+def _sticker(img, inks, motif) -> None:
+    """A wordmark in the first ink with the pictogram in the last ink beside it, on the
+    part's own colour."""
+    h = SIZE
+    if motif:
+        _wordmark(img, (int(0.38 * h), h // 2), int(0.5 * h), int(0.16 * h), COLORS[inks[0]])
+        _motif(img, motif, (int(0.8 * h), h // 2), int(0.12 * h), COLORS[inks[-1]])
+    else:
+        _wordmark(img, (h // 2, h // 2), int(0.7 * h), int(0.16 * h), COLORS[inks[0]])
+
+
+def _label(img, inks, motif) -> None:
+    """A band across the middle in the first ink carrying a sticker in the other inks (a
+    wordmark in the part's colour where none is given)."""
+    h = SIZE
+    ground = _ground(img)
+    cv2.rectangle(img, (0, int(0.36 * h)), (h, int(0.64 * h)), _bgr(COLORS[inks[0]]), -1)
+    if len(inks) > 1:
+        _sticker(img, inks[1:], motif)
+    else:
+        _wordmark(img, (h // 2, h // 2), int(0.7 * h), int(0.16 * h), ground)
+
+
+def _badge(img, inks, motif) -> None:
+    """A round badge (for a disc): a ring in the first ink around the pictogram, drawn in
+    the last ink, at the centre."""
+    c = (SIZE // 2, SIZE // 2)
+    cv2.circle(img, c, int(0.44 * SIZE), _bgr(COLORS[inks[0]]), int(0.05 * SIZE), cv2.LINE_AA)
+    _motif(img, motif, c, int(0.26 * SIZE), COLORS[inks[-1]])
+
+
+def _wave(img, inks, motif) -> None:
+    """A ribbon that waves once around (seamless where a cylinder's side closes) and a
+    wordmark above it, both in the first ink."""
+    h = SIZE
+    xs = np.arange(0, h + 1, 4)
+    ys = h * (0.62 + 0.1 * np.sin(2 * math.pi * xs / h))
+    upper = np.stack([xs, ys - 0.05 * h], axis=1)
+    lower = np.stack([xs[::-1], ys[::-1] + 0.05 * h], axis=1)
+    ink = _bgr(COLORS[inks[0]])
+    cv2.fillPoly(img, [np.concatenate([upper, lower]).astype(np.int32)], ink, cv2.LINE_AA)
+    _wordmark(img, (h // 2, int(0.36 * h)), int(0.6 * h), int(0.18 * h), COLORS[inks[0]])
+
+
+def _dial(img, inks, motif) -> None:
+    """A dial (for a clock's face, whose hands are parts): twelve ticks in the first ink
+    around the centre, the quarters longer."""
+    h, c = SIZE, (SIZE // 2, SIZE // 2)
+    ink = _bgr(COLORS[inks[0]])
+    for k in range(12):
+        a = 2 * math.pi * k / 12
+        inner = 0.3 if k % 3 == 0 else 0.36
+        p0 = (int(c[0] + inner * h * math.cos(a)), int(c[1] + inner * h * math.sin(a)))
+        p1 = (int(c[0] + 0.43 * h * math.cos(a)), int(c[1] + 0.43 * h * math.sin(a)))
+        cv2.line(img, p0, p1, ink, 9 if k % 3 == 0 else 5, cv2.LINE_AA)
+    cv2.circle(img, c, 10, ink, -1, cv2.LINE_AA)
+
+
+def _grain(img, inks, motif) -> None:
+    """Wood grain: wavy darker lines along the image, in shades of the ground colour."""
+    ground = _ground(img)
+    xs = np.arange(0, SIZE + 1, 4)
+    for k in range(9):
+        y0 = (k + 0.5) * SIZE / 9
+        ys = y0 + 4 * np.sin(2 * math.pi * (xs / SIZE * (1 + k % 3)) + k)
+        pts = np.stack([xs, ys], axis=1).astype(np.int32)
+        cv2.polylines(img, [pts], False, _bgr(_shade(ground, 0.85)), 2 + k % 2, cv2.LINE_AA)
+
+
+def _weave(img, inks, motif) -> None:
+    """Woven fabric: alternating lighter and darker threads across and along."""
+    ground = _ground(img)
+    step = 8
+    for k in range(0, SIZE, step):
+        shade = 0.88 if (k // step) % 2 else 1.06
+        cv2.line(img, (k, 0), (k, SIZE), _bgr(_shade(ground, shade)), 2)
+        cv2.line(img, (0, k), (SIZE, k), _bgr(_shade(ground, 2.0 - shade)), 2)
+
+
+PATTERNS = {
+    "label": _label,
+    "sticker": _sticker,
+    "badge": _badge,
+    "wave": _wave,
+    "dial": _dial,
+    "grain": _grain,
+    "weave": _weave,
+}
+#: How many inks each pattern prints at least.
+NEEDED_INKS = {
+    "label": 1,
+    "sticker": 1,
+    "badge": 1,
+    "wave": 1,
+    "dial": 1,
+    "grain": 0,
+    "weave": 0,
+}
+
+
+@cache
+def image(texture: Texture, rgb: tuple[float, float, float]) -> np.ndarray:
+    """The RGBA image (SIZE x SIZE, uint8) of ``texture`` printed on a part of colour
+    ``rgb``; read-only."""
+    img = np.zeros((SIZE, SIZE, 4), np.uint8)
+    img[:, :] = _bgr(rgb)
+    PATTERNS[texture.pattern](img, texture.inks, texture.motif)
+    img.setflags(write=False)
+    return img
