@@ -6,8 +6,8 @@ ManiSkill's default lights, from four sides 0.45 m away and 45 degrees above, at
 default camera resolution; its pixels (from the segmentation) in CIE Lab, and the most
 populated colour (a coarse Lab histogram's fullest bin, averaged) is its rendered colour.
 Reference swatches render each vocabulary colour on a sphere of each material the same
-way. The measurements of the shipped snapshot are stored beside it
-(``snapshots/appearance/default.json``, written by ``instructmove assets build``), so
+way. The measurements of the shipped snapshots are stored beside them
+(``snapshots/appearance/<snapshot>.json``, written by ``instructmove assets build``), so
 composition reads the same colours on every machine and needs no renderer; other
 snapshots' instances are rendered on first use.
 
@@ -114,9 +114,19 @@ def rehash_table(path: Path, old: dict[str, str], instances: list[Instance]) -> 
 
 
 @cache
-def _table() -> dict:
-    path = table_path()
+def _table(snapshot: str = "default") -> dict:
+    path = table_path(snapshot)
     return json.loads(path.read_text()) if path.is_file() else {"instances": {}, "swatches": {}}
+
+
+def _stored(instance: Instance) -> tuple[float, ...] | None:
+    """The instance's colour from a shipped table measured on this very content."""
+    digest = content_hash(instance)
+    for path in sorted(table_path().parent.glob("*.json")):
+        entry = _table(path.stem)["instances"].get(instance.uuid)
+        if entry is not None and entry["hash"] == digest:
+            return tuple(entry["lab"])
+    return None
 
 
 #: How to measure what the stored table lacks: ``photometry`` registers its renderers
@@ -135,12 +145,10 @@ def _measured(kind: str, *args) -> tuple[float, ...]:
 
 @cache
 def lab_of(instance: Instance) -> tuple[float, ...]:
-    """The instance's rendered colour: from the shipped table where it was measured on
-    this very content (the same on every machine), else rendered now."""
-    entry = _table()["instances"].get(instance.uuid)
-    if entry is not None and entry["hash"] == content_hash(instance):
-        return tuple(entry["lab"])
-    return _measured("instance", instance)
+    """The instance's rendered colour: from a shipped table where it was measured on this
+    very content (the same on every machine), else rendered now."""
+    stored = _stored(instance)
+    return stored if stored is not None else _measured("instance", instance)
 
 
 @cache

@@ -6,10 +6,17 @@ floating-point noise, so every machine computes the same hash). Loading regenera
 instance and refuses a snapshot whose content no longer matches, so an experiment can never
 silently run on changed assets. Growing the library (new categories, more instances) writes
 a new snapshot; old ones keep their meaning.
+
+A snapshot also records whether its instances wear their textures (printed labels, dials,
+grain: ``textures``); one written without (every snapshot from before textures) rebuilds
+its instances plain, as they were when it was frozen. Two ship with the package:
+``printed``, the library as it looks now, and ``default``, the same instances plain, on
+which the held-out sets of versions 2 and 3 were published.
 """
 
 from __future__ import annotations
 
+import dataclasses
 import json
 from dataclasses import dataclass
 from functools import cache
@@ -22,22 +29,35 @@ from .generators import GENERATORS
 from .identity import IDENTITY_SCHEME, content_hash, hash_for
 from .importer import data_home
 
-DEFAULT_SNAPSHOT = "default"
+DEFAULT_SNAPSHOT = "printed"
 SNAPSHOT_DIR = "snapshots"
+#: The snapshots that ship with the package, and whether their instances wear textures.
+SHIPPED = {"default": False, "printed": True}
 
 
-def build_entries(categories: list[str], per_category: int) -> list[dict]:
+def plain(inst: Instance) -> Instance:
+    """``inst`` without its textures (its parts' geometry, colours and masses unchanged)."""
+    if all(p.texture is None for p in inst.parts):
+        return inst
+    parts = tuple(dataclasses.replace(p, texture=None) for p in inst.parts)
+    return dataclasses.replace(inst, parts=parts)
+
+
+def build_entries(categories: list[str], per_category: int, textures: bool = True) -> list[dict]:
+    """The entries of instances ``0 .. per_category - 1`` of each of ``categories``, with
+    their textures or plain."""
+    look = (lambda i: i) if textures else plain
     return [
-        entry_of(generate_instance(cat, index))
+        entry_of(look(generate_instance(cat, index)))
         for cat in categories
         for index in range(per_category)
     ]
 
 
-def write_snapshot(path: Path, name: str, entries: list[dict]) -> Path:
+def write_snapshot(path: Path, name: str, entries: list[dict], textures: bool = True) -> Path:
     """Write atomically (temporary file in the same folder, then rename), under the
     current identity scheme."""
-    data = {"identity": IDENTITY_SCHEME, "name": name, "instances": entries}
+    data = {"identity": IDENTITY_SCHEME, "name": name, "instances": entries, "textures": textures}
     return write_text(path, json.dumps(data, indent=1, sort_keys=True) + "\n")
 
 
@@ -69,7 +89,7 @@ def available_snapshots() -> list[str]:
     return sorted(names)
 
 
-def _load_entry(name: str, entry: dict) -> Instance:
+def _load_entry(name: str, entry: dict, textures: bool) -> Instance:
     if entry.get("source") == "import":
         path = imported_record_path(entry["uuid"])
         if not path.is_file():
@@ -83,13 +103,19 @@ def _load_entry(name: str, entry: dict) -> Instance:
             f"snapshot {name!r} needs category {entry['category']!r}, "
             "which has no generator in this version"
         )
-    return generate_instance(entry["category"], entry["index"])
+    inst = generate_instance(entry["category"], entry["index"])
+    return inst if textures else plain(inst)
 
 
 @cache
 def load_snapshot(name: str = DEFAULT_SNAPSHOT) -> Catalog:
     """The catalog of snapshot ``name``; every instance rebuilt and hash-checked."""
     return Catalog(name, _checked(name, json.loads(_existing(name).read_text())))
+
+
+def wears_textures(name: str) -> bool:
+    """Whether the instances of snapshot ``name`` wear their textures."""
+    return json.loads(_existing(name).read_text()).get("textures", False)
 
 
 def _existing(name: str) -> Path:
@@ -106,7 +132,7 @@ def _checked(name: str, data: dict) -> list[Instance]:
     scheme = data.get("identity", 1)
     instances = []
     for entry in data["instances"]:
-        inst = _load_entry(name, entry)
+        inst = _load_entry(name, entry, data.get("textures", False))
         if inst.uuid != entry["uuid"] or hash_for(inst, scheme) != entry["content_hash"]:
             hint = (
                 " (it was frozen with exact floats, identity scheme 1, which another "
@@ -139,7 +165,7 @@ def rehash(name: str) -> tuple[int, int]:
         {**e, "content_hash": content_hash(i)}
         for e, i in zip(data["instances"], instances, strict=True)
     ]
-    write_snapshot(path, name, entries)
+    write_snapshot(path, name, entries, data.get("textures", False))
     load_snapshot.cache_clear()
     table = table_path(name)
     kept = rehash_table(table, old, instances) if table.is_file() else 0
@@ -208,6 +234,7 @@ def import_folder(
     for inst in kept:
         write_json(imported_record_path(inst.uuid), inst.to_record(), indent=None)
     snapshot = [entry_of(i) for i in base + kept]
-    path = write_snapshot(user_snapshot_dir() / f"{name}.json", name, snapshot)
+    textures = wears_textures(extend) if extend else True
+    path = write_snapshot(user_snapshot_dir() / f"{name}.json", name, snapshot, textures)
     load_snapshot.cache_clear()
     return ImportReport(path, rejected, repaired)

@@ -6,6 +6,7 @@ import math
 from itertools import pairwise
 
 from ..design import Design, Point, Traits
+from ..textures import Texture
 from .desktop import BRIGHT
 from .registry import generator
 
@@ -221,7 +222,8 @@ def dental_floss(d: Design) -> Traits:
         d.stadium("lid", half_len, r, base_h, h - base_h, "plastic", lid, solid_fraction=0.7)
     else:
         d.upright("case", r, base_h, 0.0, "plastic", color, solid_fraction=0.7)
-        d.upright("lid", r, h - base_h, base_h, "plastic", lid, solid_fraction=0.7)
+        tooth = Texture("badge", ("blue" if lid != "blue" else "white", "white"), "tooth")
+        d.upright("lid", r, h - base_h, base_h, "plastic", lid, solid_fraction=0.7, texture=tooth)
     d.box(
         "cutter", (0.0008, 0.005, 0.003), (half_len + r + 0.0008, 0, h - 0.003), "metal", "silver"
     )
@@ -374,6 +376,7 @@ def hand_sanitizer(d: Design) -> Traits:
         "paper",
         label,
         visual_only=True,
+        texture=Texture("sticker", ("white" if label != "white" else "blue",), "drop"),
     )
     d.ellipsoid(
         "shoulder", (half_len + r, r, 0.01), (0, 0, h), "plastic", "transparent", solid_fraction=0.3

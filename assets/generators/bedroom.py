@@ -6,6 +6,7 @@ import math
 
 from ..design import Design, Traits
 from ..parts import X_TO_Y, axis_angle_quat
+from ..textures import Texture
 from .registry import generator
 
 
@@ -294,6 +295,7 @@ def alarm_clock(d: Design) -> Traits:
         "paper",
         "white",
         visual_only=True,
+        texture=Texture("dial", ("black",)),
     )
     for k, (hand, angle) in enumerate(((0.5, d.uniform(0, 6.3)), (0.75, d.uniform(0, 6.3)))):
         r = rc * hand / 2

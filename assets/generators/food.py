@@ -6,6 +6,7 @@ import math
 
 from ..design import Design, Traits
 from ..parts import axis_angle_quat
+from ..textures import Texture
 from .registry import generator
 
 
@@ -99,7 +100,8 @@ def canned_coke(d: Design) -> Traits:
     color = d.choice(["red", "red", "silver", "black", "blue"])
     r = d.uniform(0.031, 0.034)
     h = d.uniform(0.105, 0.125)
-    d.upright("body", r, h - 0.012, 0.006, "aluminium", color, solid_fraction=0.38)
+    ribbon = Texture("wave", ("red" if color == "silver" else "white",))
+    d.upright("body", r, h - 0.012, 0.006, "aluminium", color, solid_fraction=0.38, texture=ribbon)
     d.upright("bottom_rim", r * 0.9, 0.006, 0.0, "aluminium", "silver")
     d.upright("top_rim", r * 0.92, 0.006, h - 0.006, "aluminium", "silver")
     d.box("tab", (0.01, 0.005, 0.0008), (0.008, 0, h + 0.0008), "aluminium", "silver")

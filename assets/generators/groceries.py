@@ -6,6 +6,7 @@ import math
 
 from ..design import Design, Traits
 from ..parts import X_TO_Z, axis_angle_quat, quat_mul
+from ..textures import Texture
 from .registry import generator
 
 WRAPPERS = ["red", "blue", "green", "yellow", "orange", "purple", "pink", "black", "white"]
@@ -46,7 +47,9 @@ def _crimps(d: Design, half_x: float, width: float, z: float, color: str, reach:
         d.box(f"crimp_{k}", (reach / 2, width / 2, 0.0012), center, "plastic", color)
 
 
-def _print(d: Design, name: str, radius: float, depth: float, z: float, color: str) -> None:
+def _print(
+    d: Design, name: str, radius: float, depth: float, z: float, color: str, texture=None
+) -> None:
     """A round printed picture on the front and back faces of a body ``depth`` deep in y."""
     d.add(
         name,
@@ -57,12 +60,13 @@ def _print(d: Design, name: str, radius: float, depth: float, z: float, color: s
         color,
         quat=_yaw(math.pi / 2),
         visual_only=True,
+        texture=texture,
     )
 
 
-def _band(d: Design, name: str, half, z: float, color: str, x: float = 0.0) -> None:
+def _band(d: Design, name: str, half, z: float, color: str, x: float = 0.0, texture=None) -> None:
     """A printed label wrapped around a box-shaped body (decoration)."""
-    d.box(name, half, (x, 0.0, z), "paper", color, visual_only=True)
+    d.box(name, half, (x, 0.0, z), "paper", color, visual_only=True, texture=texture)
 
 
 # fruits ----------------------------------------------------------------------------------
@@ -284,8 +288,18 @@ def juice(d: Design) -> Traits:
     if d.rng.random() < 0.5:
         box = d.choice(WRAPPERS)
         lx, ly, hz = d.uniform(0.04, 0.055), d.uniform(0.028, 0.038), d.uniform(0.075, 0.105)
-        d.box("carton", (lx / 2, ly / 2, hz / 2), (0, 0, hz / 2), "paper", box, solid_fraction=1.4)
-        _print(d, "fruit_print", lx * 0.3, ly, hz * 0.45, fruit)
+        band = Texture("label", ("white",))
+        d.box(
+            "carton",
+            (lx / 2, ly / 2, hz / 2),
+            (0, 0, hz / 2),
+            "paper",
+            box,
+            solid_fraction=1.4,
+            texture=band,
+        )
+        badge = Texture("badge", ("white", fruit), "fruit")
+        _print(d, "fruit_print", lx * 0.3, ly, hz * 0.45, fruit, texture=badge)
         straw_color = d.choice(["white", "yellow", "pink", "blue"])
         straw = d.uniform(0.035, 0.05)
         d.upright(
@@ -308,6 +322,7 @@ def juice(d: Design) -> Traits:
         "paper",
         d.choice(PRINTS[:3]),
         visual_only=True,
+        texture=Texture("sticker", (fruit, fruit), "fruit"),
     )
     neck_z = body + hz * 0.08
     d.upright("neck", r * 0.6, hz - neck_z - 0.018, neck_z, "plastic", fruit)
@@ -327,7 +342,8 @@ def milk_carton(d: Design) -> Traits:
     d.add("gable", "box", (w / 2, s, s), (0, 0, hz), "paper", body, quat=gable)
     fin = d.uniform(0.008, 0.014)
     d.box("fin", (w / 2, 0.0015, fin / 2), (0, 0, hz + w / 2 + fin / 2 - 0.003), "paper", body)
-    _band(d, "print", (w / 2 + 0.0008, w / 2 + 0.0008, hz * 0.22), hz * 0.45, band)
+    mark = Texture("sticker", (body,), "drop")
+    _band(d, "print", (w / 2 + 0.0008, w / 2 + 0.0008, hz * 0.22), hz * 0.45, band, texture=mark)
     if d.rng.random() < 0.5:
         spout = quat_mul(axis_angle_quat((1, 0, 0), -math.pi / 4), X_TO_Z)
         pos = (0, w / 4 + 0.004, hz + w / 4 + 0.004)
@@ -389,7 +405,16 @@ def chewing_gum(d: Design) -> Traits:
             label,
             visual_only=True,
         )
-    _band(d, "label", (lx * 0.18, ly / 2 + 0.0006, hz / 2 + 0.0006), hz / 2, label, x=-lx * 0.1)
+    mint = Texture("sticker", (color, "white" if label == "green" else "green"), "leaf")
+    _band(
+        d,
+        "label",
+        (lx * 0.18, ly / 2 + 0.0006, hz / 2 + 0.0006),
+        hz / 2,
+        label,
+        x=-lx * 0.1,
+        texture=mint,
+    )
     return Traits((color, label), "paper", "cuboid")
 
 
@@ -403,7 +428,10 @@ def biscuit(d: Design) -> Traits:
             "pack", (lx / 2, ly / 2, hz / 2), (0, 0, hz / 2), "paper", wrapper, solid_fraction=0.6
         )
         _crimps(d, lx / 2, ly, hz / 2, wrapper, 0.01)
-        d.upright("picture", ly * 0.35, 0.0012, hz, "paper", "golden", visual_only=True)
+        cookie = Texture("badge", ("white", "golden"), "cookie")
+        d.upright(
+            "picture", ly * 0.35, 0.0012, hz, "paper", "golden", visual_only=True, texture=cookie
+        )
         return Traits((wrapper, "golden"), "paper", "cuboid")
     r = d.uniform(0.024, 0.034)
     if kind == "sandwich":
@@ -473,13 +501,21 @@ def potato_chips(d: Design) -> Traits:
                 quat=axis_angle_quat((0, 1, 0), math.pi / 4),
                 visual_only=True,
             )
-        _print(d, "chip_picture", w * 0.27, t, hz * 0.45, label)
+        chip = Texture(
+            "badge", (color, "orange" if label in ("yellow", "golden") else "golden"), "chip"
+        )
+        _print(d, "chip_picture", w * 0.27, t, hz * 0.45, label, texture=chip)
         return Traits((color, label), "plastic", "irregular")
     r, hz = d.uniform(0.033, 0.035), d.uniform(0.17, 0.24)
     d.upright("rim", r * 0.97, 0.005, 0.0, "aluminium", "silver")
     d.upright("tube", r, hz - 0.02, 0.005, "paper", color, solid_fraction=0.33)
     d.upright("lid", r + 0.0012, 0.015, hz - 0.015, "plastic", d.choice(["transparent", color]))
-    d.upright("label", r + 0.0008, hz * 0.3, hz * 0.3, "paper", label, visual_only=True)
+    chip = Texture(
+        "sticker", (color, "orange" if label in ("yellow", "golden") else "golden"), "chip"
+    )
+    d.upright(
+        "label", r + 0.0008, hz * 0.3, hz * 0.3, "paper", label, visual_only=True, texture=chip
+    )
     return Traits((color, label), "paper", "cylinder")
 
 
@@ -523,7 +559,8 @@ def chocolate(d: Design) -> Traits:
     lx, ly, hz = d.uniform(0.08, 0.12), d.uniform(0.028, 0.04), d.uniform(0.012, 0.018)
     d.box("bar", (lx / 2, ly / 2, hz / 2), (0, 0, hz / 2), "plastic", wrapper)
     _crimps(d, lx / 2, ly * 0.9, hz / 2, wrapper, 0.008)
-    _band(d, "brand", (lx * 0.25, ly / 2 + 0.0006, hz / 2 + 0.0006), hz / 2, label)
+    mark = Texture("sticker", (wrapper,))
+    _band(d, "brand", (lx * 0.25, ly / 2 + 0.0006, hz / 2 + 0.0006), hz / 2, label, texture=mark)
     return Traits((wrapper, label), "plastic", "cuboid")
 
 
@@ -538,7 +575,16 @@ def cheese_sticks(d: Design) -> Traits:
     for k in range(count):
         y = (k - (count - 1) / 2) * 2 * r
         d.rod(f"stick_{k}", r, length, (0, y, r), "organic", cheese, capsule=True)
-        d.rod(f"print_{k}", r + 0.0006, length * 0.45, (0, y, r), "plastic", wrap, visual_only=True)
+        d.rod(
+            f"print_{k}",
+            r + 0.0006,
+            length * 0.45,
+            (0, y, r),
+            "plastic",
+            wrap,
+            visual_only=True,
+            texture=Texture("sticker", ("white", "yellow"), "cheese"),
+        )
     _crimps(d, length / 2 - 0.002, 2 * r * count, r, "transparent", 0.01)
     if count > 1:
         d.box(

@@ -6,6 +6,7 @@ import math
 
 from ..design import Design, Traits
 from ..parts import axis_angle_quat
+from ..textures import Texture
 from .desktop import BRIGHT
 from .registry import generator
 
@@ -441,6 +442,7 @@ def staples_box(d: Design) -> Traits:
         "paper",
         label,
         visual_only=True,
+        texture=Texture("sticker", (color, "silver"), "staple"),
     )
     rows = int(ly / 0.007)
     for k in range(rows):

@@ -98,25 +98,27 @@ def _cmd_assets_build(args: argparse.Namespace) -> int:
     from instructmove_ms.assets.generators import GENERATORS
 
     categories = sorted(GENERATORS)
+    shipped = args.name in snap.SHIPPED
+    textures = snap.SHIPPED[args.name] if shipped else not args.plain
     entries = []
     for category in tqdm(categories, desc="generating", unit="category"):
-        entries += snap.build_entries([category], args.per_category)
-    folder = (
-        snap.package_snapshot_dir()
-        if args.name == snap.DEFAULT_SNAPSHOT
-        else snap.user_snapshot_dir()
-    )
-    path = snap.write_snapshot(folder / f"{args.name}.json", args.name, entries)
+        entries += snap.build_entries([category], args.per_category, textures)
+    folder = snap.package_snapshot_dir() if shipped else snap.user_snapshot_dir()
+    path = snap.write_snapshot(folder / f"{args.name}.json", args.name, entries, textures)
     print(
         f"snapshot {args.name!r}: {len(entries)} instances of {len(categories)} categories "
-        f"-> {path}"
+        f"({'textured' if textures else 'plain'}) -> {path}"
     )
-    if args.name == snap.DEFAULT_SNAPSHOT:  # other snapshots' colours are rendered on use
+    if shipped:  # other snapshots' colours are rendered on use
         from instructmove_ms.assets.appearance import table_path
         from instructmove_ms.assets.photometry import write_table
+        from instructmove_ms.assets.uv_meshes import write_meshes
 
+        write_meshes()
+
+        snap.load_snapshot.cache_clear()
         instances = snap.load_snapshot(args.name).instances
-        print(f"rendered colours -> {write_table(instances, table_path())}")
+        print(f"rendered colours -> {write_table(instances, table_path(args.name))}")
     return 0
 
 
@@ -147,6 +149,11 @@ def add_parsers(sub: argparse._SubParsersAction) -> None:
     p = assets.add_parser("build", help="generate the library and freeze it as a snapshot")
     p.add_argument("--name", default="default", help="snapshot name (default: the shipped one)")
     p.add_argument("--per-category", type=int, default=INSTANCES_PER_CATEGORY)
+    p.add_argument(
+        "--plain",
+        action="store_true",
+        help="instances without their textures (the shipped snapshots know their own look)",
+    )
     p.set_defaults(func=_cmd_assets_build)
     p = assets.add_parser(
         "rehash", help="re-hash a snapshot written by an older identity scheme (same assets)"
