@@ -27,6 +27,7 @@ from instructmove_ms.assets import (
     load_snapshot,
     photometry,  # noqa: F401  (renders colours not stored)
 )
+from instructmove_ms.assets.catalog import Catalog
 from instructmove_ms.assets.sapien_builder import actor_builder
 from instructmove_ms.composer import compose, rephrase
 from instructmove_ms.episode import CONDITIONS, EpisodeSpec, actor_name
@@ -150,8 +151,9 @@ class InstructMoveEnv(BaseEnv):
                 raise ValueError(
                     f"episode robot {spec.robot!r} does not match env robot {self.robot_uids!r}"
                 )
+            catalog = load_snapshot(spec.snapshot)  # raises with the unknown snapshot
             for obj in spec.objects:
-                self.catalog[obj.uuid]  # raises with the unknown uuid
+                catalog[obj.uuid]  # raises with the unknown uuid
         if len({len(s.objects) for s in specs}) != 1:
             raise ValueError("all sub-scenes must hold the same number of objects")
         if not checked:  # a hand-made scene for a physics test: marked as such
@@ -178,9 +180,15 @@ class InstructMoveEnv(BaseEnv):
         return self.perturbed(spec, self.perturbation if perturbation is None else perturbation)
 
     def certified(self, spec: EpisodeSpec) -> EpisodeSpec:
-        """``spec`` with the verifier's certificate for this env's robot; a
-        ``verify.VerificationError`` names its problems (see ``verify.certify``)."""
-        return certify(spec, self.catalog, self.task, self.agent.gripper.max_width)
+        """``spec`` with the verifier's certificate for this env's robot, judged on the
+        snapshot the spec names; a ``verify.VerificationError`` names its problems (see
+        ``verify.certify``)."""
+        return certify(spec, self.catalog_of(spec), self.task, self.agent.gripper.max_width)
+
+    def catalog_of(self, spec: EpisodeSpec) -> Catalog:
+        """The snapshot ``spec`` was made on (a stored episode names its own: sets of
+        versions 2 and 3 play on the plain ``default`` one in any env)."""
+        return self.catalog if spec.snapshot == self.catalog.name else load_snapshot(spec.snapshot)
 
     def perturbed(self, spec: EpisodeSpec, levels) -> EpisodeSpec:
         """``spec`` at the perturbation ``levels`` (``{axis: level}`` or ``"axis:level,..."``),
@@ -190,21 +198,22 @@ class InstructMoveEnv(BaseEnv):
         if not levels or spec.perturbation:
             return spec
         unmeasured = dataclasses.replace(spec, certificate={})  # the scene's look changes
-        return self.certified(perturb(unmeasured, levels, self._perturbation_context()))
+        return self.certified(perturb(unmeasured, levels, self._perturbation_context(spec)))
 
-    def _perturbation_context(self) -> Context:
+    def _perturbation_context(self, spec: EpisodeSpec) -> Context:
         names = [j.name for j in self.agent.robot.get_active_joints()]
         opening = self.agent.gripper.max_width
+        catalog = self.catalog_of(spec)
         return Context(
             task=self.task,
-            catalog=self.catalog,
+            catalog=catalog,
             arm=tuple(names.index(n) for n in self.agent.arm_joint_names),
             limits=self.agent.robot.get_qlimits()[0].cpu().numpy(),
             cameras=tuple(c.uid for c in self.agent._sensor_configs),
             workspace=self.agent.workspace,
-            problems=lambda s: verify(s, self.catalog, self.task, opening),
+            problems=lambda s: verify(s, catalog, self.task, opening),
             rephrase=lambda s, rng, unseen, synonyms: rephrase(
-                self.task, self.catalog, s, rng, unseen, synonyms
+                self.task, catalog, s, rng, unseen, synonyms
             ),
         )
 
@@ -235,7 +244,7 @@ class InstructMoveEnv(BaseEnv):
             parts = []
             for i, ep in enumerate(self.episodes):
                 obj = ep.objects[k]
-                builder = actor_builder(self.scene, self.catalog[obj.uuid])
+                builder = actor_builder(self.scene, self.catalog_of(ep)[obj.uuid])
                 builder.set_scene_idxs([i])
                 builder.initial_pose = sapien.Pose(p=obj.pose[:3], q=obj.pose[3:])
                 actor = builder.build(name=f"{actor_name(k)}_{i}")
@@ -245,7 +254,7 @@ class InstructMoveEnv(BaseEnv):
             self.add_to_state_dict_registry(merged)
             self.objects.append(merged)
         for ep in self.episodes:
-            lo_hi = [self.catalog[o.uuid].bounds for o in ep.objects]
+            lo_hi = [self.catalog_of(ep)[o.uuid].bounds for o in ep.objects]
             boxes.append([np.concatenate([(lo + hi) / 2, (hi - lo) / 2]) for lo, hi in lo_hi])
         boxes_t = torch.tensor(np.asarray(boxes), dtype=torch.float32, device=self.device)
         self._box_center, self._box_half = boxes_t[..., :3], boxes_t[..., 3:]

@@ -109,7 +109,7 @@ class PlaceA2BEnv(InstructMoveEnv):
         regions = []
         for ep in self.episodes:  # the goal receptacle's interior: floor centre and half size
             region = (
-                self.catalog[ep.objects[ep.goal_destination].uuid].interior
+                self.catalog_of(ep)[ep.objects[ep.goal_destination].uuid].interior
                 if ep.goal_destination >= 0
                 else None
             )

@@ -25,9 +25,14 @@ def _cmd_episodes_write(args: argparse.Namespace) -> int:
         for robot in [args.robot] if args.robot else TASKS[env_id].supported_robots:
             for split in EVAL_SPLITS:
                 env = gym.make(env_id, robot_uids=robot, split=split, obs_mode="state")
+                measured = (
+                    heldout.load_set(env_id, robot, split, version=args.measured_in)
+                    if args.measured_in
+                    else []
+                )
                 specs = list(
                     tqdm(
-                        heldout.generate_set(env, args.n),
+                        heldout.generate_set(env, args.n, tuple(measured)),
                         total=args.n,
                         desc=f"{env_id} {robot} {split}",
                         unit="episode",
@@ -73,12 +78,22 @@ def _cmd_episodes_sheet(args: argparse.Namespace) -> int:
 
 
 def add_parsers(sub: argparse._SubParsersAction) -> None:
+    from instructmove_ms.heldout import SET_VERSIONS
+
     episodes_sub = _add_group(sub, "episodes", "held-out evaluation episode sets")
     p = episodes_sub.add_parser("write", help="sample and store the held-out sets")
     p.add_argument("--task", default=None, help="one env id (default: every family)")
     p.add_argument("--robot", default=None, help="one robot (default: every supported one)")
     p.add_argument("--n", type=int, default=100, help="episodes per set")
     p.add_argument("--out", default=None, help="folder (default: the package's own)")
+    p.add_argument(
+        "--measured-in",
+        type=int,
+        default=None,
+        choices=SET_VERSIONS,
+        help="a stored set version whose visibility figures are reused for the same scenes "
+        "(only new scenes are rendered)",
+    )
     p.set_defaults(func=_cmd_episodes_write)
     p = episodes_sub.add_parser("show", help="print one stored held-out episode spec")
     p.add_argument("--task", default="PickCategory-InstructMove")
