@@ -66,7 +66,7 @@ def hand_spec(placed, robot: str, robot_qpos, target: int = 0):
     return EpisodeSpec(
         family="pick_category",
         robot=robot,
-        snapshot="default",
+        snapshot=catalog.name,
         split="train",
         seed=0,
         instruction=f"pick up the {objects[target].category.replace('_', ' ')}",

@@ -94,7 +94,9 @@ def test_no_stored_decision_hangs_on_float_noise():
     margins, size ratios, graspability, colour distances) sits on its threshold, so no
     machine whose floats differ in their last bits refuses or re-reads one."""
     catalog = snap.load_snapshot()
-    nudged_catalog = snap.Catalog("default", [nudged_instance(i, ULPS) for i in catalog.instances])
+    nudged_catalog = snap.Catalog(
+        catalog.name, [nudged_instance(i, ULPS) for i in catalog.instances]
+    )
     rng = np.random.default_rng(0)
     for env_id, robot, split, specs in stored_sets():
         task = TASKS[env_id]

@@ -166,7 +166,7 @@ def test_layout_jitter_stays_within_the_declared_radius(rgb_env):
 def test_a_spec_perturbed_already_is_not_perturbed_again(rgb_env):
     spec, _ = _reset(rgb_env, {"layout": 1})
     with pytest.raises(ValueError, match="perturbed already"):
-        perturb(spec, {"layout": 2}, rgb_env.unwrapped._perturbation_context())
+        perturb(spec, {"layout": 2}, rgb_env.unwrapped._perturbation_context(spec))
 
 
 def _no_unseen_phrase_passes(spec: EpisodeSpec, catalog) -> bool:

@@ -36,15 +36,16 @@ SAMPLED = Path(__file__).parent / "data" / "sampled_reference.json"
 SAMPLED_TOLERANCE = 1e-9
 
 
-def _snapshot_data() -> dict:
-    return json.loads(snap.snapshot_path(snap.DEFAULT_SNAPSHOT).read_text())
+def _snapshot_data(name: str = snap.DEFAULT_SNAPSHOT) -> dict:
+    return json.loads(snap.snapshot_path(name).read_text())
 
 
 # Asset identity ------------------------------------------------------------------------
-def test_the_default_snapshot_loads_and_every_hash_matches_here():
+@pytest.mark.parametrize("name", sorted(snap.SHIPPED))
+def test_each_shipped_snapshot_loads_and_every_hash_matches_here(name):
     snap.load_snapshot.cache_clear()
-    catalog = snap.load_snapshot()
-    assert len(catalog) == len(_snapshot_data()["instances"]) == 1140
+    catalog = snap.load_snapshot(name)
+    assert len(catalog) == len(_snapshot_data(name)["instances"]) == 1140
 
 
 @pytest.mark.parametrize("ulps", [1, -3, 4])

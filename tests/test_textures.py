@@ -1,0 +1,146 @@
+"""Printed labels and patterns: they show on the camera, keep each part's annotated colour,
+change nothing physical, and a snapshot frozen before them still rebuilds its plain look."""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+
+import numpy as np
+import pytest
+
+from instructmove_ms.assets import load_snapshot
+from instructmove_ms.assets import snapshot as snap
+from instructmove_ms.assets.appearance import DISTINCT, delta_e, dominant, srgb_to_lab
+from instructmove_ms.assets.catalog import generate_instance
+from instructmove_ms.assets.identity import content_hash
+from instructmove_ms.assets.parts import X_TO_Z, Part
+from instructmove_ms.assets.photometry import _stage, rendered_part
+from instructmove_ms.assets.sapien_builder import add_part
+from instructmove_ms.assets.textures import Texture, image
+from instructmove_ms.assets.uv_meshes import SHAPES, WRITERS, mesh_path
+from instructmove_ms.assets.vocab import COLORS
+
+#: The packaged and printed objects two readers could not name from their plain close-ups.
+READER_MISSES = (
+    "canned_coke",
+    "juice",
+    "potato_chips",
+    "chewing_gum",
+    "biscuit",
+    "chocolate",
+    "cheese_sticks",
+    "staples_box",
+    "dental_floss",
+    "hand_sanitizer",
+    "alarm_clock",
+)
+
+
+def _textured_parts(catalog):
+    """Each distinct textured part of ``catalog`` (by recipe, colour, material and size)."""
+    seen = {}
+    for inst in catalog.instances:
+        for part in inst.parts:
+            if part.texture is not None:
+                key = (part.texture, part.color, part.material, part.shape, part.size)
+                seen.setdefault(key, (inst, part))
+    return list(seen.values())
+
+
+@pytest.mark.parametrize("shape", SHAPES)
+def test_the_shipped_uv_meshes_are_what_the_module_writes(shape):
+    assert mesh_path(shape).read_text() == WRITERS[shape]()
+
+
+def test_printed_and_plain_snapshots_hold_the_same_bodies():
+    """The printed snapshot is the plain one with textures: same instances, parts,
+    colours and masses (so the same physics and layouts); only textured instances hash
+    apart, and every category a reader missed wears a print in its packaged kinds (a loose
+    cookie has none)."""
+    printed, plain = load_snapshot("printed"), load_snapshot("default")
+    assert [i.uuid for i in printed.instances] == [i.uuid for i in plain.instances]
+    textured = set()
+    for inst in printed.instances:
+        bare = plain[inst.uuid]
+        assert snap.plain(inst) == bare and inst.mass == bare.mass
+        assert all(p.texture is None for p in bare.parts)
+        wears = any(p.texture is not None for p in inst.parts)
+        assert (content_hash(inst) != content_hash(bare)) == wears
+        if wears:
+            textured.add(inst.uuid)
+    assert len(textured) > 200
+    for category in READER_MISSES:
+        wearing = [i for i in printed.of_category(category) if i.uuid in textured]
+        assert len(wearing) >= 3, category
+
+
+def test_each_texture_keeps_its_part_colour_and_shows():
+    """Rendered alone, every textured part of the library keeps the colour of its plain
+    self (its annotation: never a colour apart), and its image's dominant colour is the
+    part's own."""
+    far = []
+    for inst, part in _textured_parts(load_snapshot("printed")):
+        pixels = srgb_to_lab(image(part.texture, part.rgb)[..., :3].reshape(-1, 3) / 255.0)
+        drawn = delta_e(dominant(pixels), srgb_to_lab(np.array(part.rgb)))
+        assert drawn < 3, (inst.category, part.name, drawn)
+        shown = delta_e(rendered_part(part), rendered_part(dataclasses.replace(part, texture=None)))
+        far.append((shown, inst.category, part.name))
+    assert max(far)[0] < DISTINCT, max(far)
+
+
+def test_a_print_shows_on_the_camera():
+    """The cola can's ribbon: white pixels on the printed body, none on the plain one."""
+    ribbon = Texture("wave", ("white",))
+    body = Part("body", "cylinder", (0.033, 0.05), (0, 0, 0.05), X_TO_Z, "aluminium", "red",
+                COLORS["red"], texture=ribbon)  # fmt: skip
+    whites = []
+    for part in (body, dataclasses.replace(body, texture=None)):
+        builder = _stage().scene.create_actor_builder()
+        add_part(builder, part)
+        lab = _stage().look(builder, 0.1, 0.12)
+        whites.append(float(((lab[:, 0] > 55) & (np.hypot(lab[:, 1], lab[:, 2]) < 10)).mean()))
+    assert whites[0] > 0.05 and whites[1] < 0.005, whites
+
+
+@pytest.mark.parametrize(
+    ("make", "message"),
+    [
+        (lambda: Texture("tartan"), "unknown texture pattern 'tartan'"),
+        (lambda: Texture("label", ("mauve",)), "unknown ink colour 'mauve'"),
+        (lambda: Texture("label", (), "unicorn"), "unknown motif 'unicorn'"),
+        (lambda: Texture("dial"), "pattern 'dial' prints 1 inks"),
+        (
+            lambda: Part(
+                "ball",
+                "sphere",
+                (0.02,),
+                (0, 0, 0.02),
+                (1, 0, 0, 0),
+                "plastic",
+                "red",
+                COLORS["red"],
+                texture=Texture("grain"),
+            ),  # fmt: skip
+            "a sphere carries no texture",
+        ),
+    ],
+)
+def test_bad_textures_are_refused_by_name(make, message):
+    with pytest.raises(ValueError, match=message):
+        make()
+
+
+def test_a_snapshot_frozen_without_textures_rebuilds_them_plain(tmp_path, monkeypatch):
+    """A snapshot file with no ``textures`` key (every one frozen before them) loads its
+    instances plain and hash-checks them; the same entries marked textured are stale."""
+    monkeypatch.setattr(snap, "user_snapshot_dir", lambda: tmp_path)
+    coke = generate_instance("canned_coke", 0)
+    assert any(p.texture is not None for p in coke.parts)
+    entry = snap.entry_of(snap.plain(coke))
+    path = snap.write_snapshot(tmp_path / "old.json", "old", [entry], textures=False)
+    data = {k: v for k, v in json.loads(path.read_text()).items() if k != "textures"}
+    (loaded,) = snap._checked("old", data)
+    assert loaded == snap.plain(coke)
+    with pytest.raises(ValueError, match="is stale: canned_coke #0"):
+        snap._checked("old", {**data, "textures": True})
