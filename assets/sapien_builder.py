@@ -13,7 +13,7 @@ import sapien.render as render
 from .catalog import Instance
 from .parts import Part
 from .textures import Texture, image
-from .uv_meshes import mesh_path
+from .uv_meshes import aspect, mesh_path
 from .vocab import MATERIALS
 
 
@@ -29,11 +29,14 @@ def physical_material(name: str) -> physx.PhysxMaterial:
 
 
 @cache
-def _texture(texture: Texture, rgb: tuple[float, float, float]) -> render.RenderTexture2D:
+def _texture(
+    texture: Texture, rgb: tuple[float, float, float], aspect: float
+) -> render.RenderTexture2D:
     """The texture's image on colour ``rgb``, in linear storage (``srgb=False``) as the
     plain parts' base colours are read, so a printed part's ground renders as a plain
     part of its colour does."""
-    return render.RenderTexture2D(np.array(image(texture, rgb)), "R8G8B8A8Unorm", srgb=False)
+    pixels = np.array(image(texture, rgb, aspect))
+    return render.RenderTexture2D(pixels, "R8G8B8A8Unorm", srgb=False)
 
 
 def render_material(part: Part) -> render.RenderMaterial:
@@ -47,7 +50,8 @@ def render_material(part: Part) -> render.RenderMaterial:
     )
     if part.texture is not None:
         material.base_color = [1.0, 1.0, 1.0, alpha]
-        material.base_color_texture = _texture(part.texture, part.rgb)
+        shape = aspect(part.shape, part.size)
+        material.base_color_texture = _texture(part.texture, part.rgb, shape)
     return material
 
 

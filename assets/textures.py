@@ -148,83 +148,103 @@ def _ground(img: np.ndarray) -> np.ndarray:
     return img[0, 0, :3] / 255.0
 
 
-def _sticker(img, inks, motif) -> None:
-    """A wordmark in the first ink with the pictogram in the last ink beside it, on the
-    part's own colour."""
-    h = SIZE
-    if motif:
-        _wordmark(img, (int(0.38 * h), h // 2), int(0.5 * h), int(0.16 * h), COLORS[inks[0]])
-        _motif(img, motif, (int(0.8 * h), h // 2), int(0.12 * h), COLORS[inks[-1]])
-    else:
-        _wordmark(img, (h // 2, h // 2), int(0.7 * h), int(0.16 * h), COLORS[inks[0]])
+def _centres(img: np.ndarray, span: float) -> tuple[list[float], float]:
+    """Where a group ``span`` heights wide repeats across the image (once per
+    ``span`` of width, so a wrapped cylinder shows one from every side) and its scale (below
+    1 where the image is narrower than the group)."""
+    h, w = img.shape[:2]
+    n = max(1, int(w / (span * h)))
+    return [(k + 0.5) * w / n for k in range(n)], min(1.0, w / (span * h))
+
+
+def _sticker(img, inks, motif, y: float = 0.5) -> None:
+    """Wordmarks in the first ink, each with the pictogram in the last ink beside it, on
+    the part's own colour, centred at ``y`` of the height."""
+    h = img.shape[0]
+    cy = int(y * h)
+    centres, scale = _centres(img, 1.1 if motif else 0.9)
+    word_h, radius = int(0.18 * h * scale), int(0.15 * h * scale)
+    for cx in centres:
+        if motif:
+            at = (int(cx - 0.17 * h * scale), cy)
+            _wordmark(img, at, int(0.5 * h * scale), word_h, COLORS[inks[0]])
+            _motif(img, motif, (int(cx + 0.33 * h * scale), cy), radius, COLORS[inks[-1]])
+        else:
+            _wordmark(img, (int(cx), cy), int(0.75 * h * scale), word_h, COLORS[inks[0]])
 
 
 def _label(img, inks, motif) -> None:
     """A band across the middle in the first ink carrying a sticker in the other inks (a
     wordmark in the part's colour where none is given)."""
-    h = SIZE
-    ground = _ground(img)
-    cv2.rectangle(img, (0, int(0.36 * h)), (h, int(0.64 * h)), _bgr(COLORS[inks[0]]), -1)
+    h, w = img.shape[:2]
+    ground = tuple(_ground(img))
+    cv2.rectangle(img, (0, int(0.34 * h)), (w, int(0.66 * h)), _bgr(COLORS[inks[0]]), -1)
     if len(inks) > 1:
         _sticker(img, inks[1:], motif)
     else:
-        _wordmark(img, (h // 2, h // 2), int(0.7 * h), int(0.16 * h), ground)
+        for cx in _centres(img, 0.9)[0]:
+            _wordmark(img, (int(cx), h // 2), int(0.75 * h), int(0.18 * h), ground)
 
 
 def _badge(img, inks, motif) -> None:
     """A round badge (for a disc): a ring in the first ink around the pictogram, drawn in
     the last ink, at the centre."""
-    c = (SIZE // 2, SIZE // 2)
-    cv2.circle(img, c, int(0.44 * SIZE), _bgr(COLORS[inks[0]]), int(0.05 * SIZE), cv2.LINE_AA)
-    _motif(img, motif, c, int(0.26 * SIZE), COLORS[inks[-1]])
+    h, w = img.shape[:2]
+    c, r = (w // 2, h // 2), min(w, h)
+    cv2.circle(img, c, int(0.44 * r), _bgr(COLORS[inks[0]]), int(0.05 * r), cv2.LINE_AA)
+    _motif(img, motif, c, int(0.26 * r), COLORS[inks[-1]])
 
 
 def _wave(img, inks, motif) -> None:
-    """A ribbon that waves once around (seamless where a cylinder's side closes) and a
-    wordmark above it, both in the first ink."""
-    h = SIZE
-    xs = np.arange(0, h + 1, 4)
-    ys = h * (0.62 + 0.1 * np.sin(2 * math.pi * xs / h))
-    upper = np.stack([xs, ys - 0.05 * h], axis=1)
-    lower = np.stack([xs[::-1], ys[::-1] + 0.05 * h], axis=1)
+    """A ribbon waving around (a whole number of times, seamless where a cylinder's side
+    closes) under wordmarks, all in the first ink."""
+    h, w = img.shape[:2]
+    waves = max(1, round(w / (2 * h)))
+    xs = np.arange(0, w + 1, 4)
+    ys = h * (0.66 + 0.1 * np.sin(2 * math.pi * waves * xs / w))
+    upper = np.stack([xs, ys - 0.06 * h], axis=1)
+    lower = np.stack([xs[::-1], ys[::-1] + 0.06 * h], axis=1)
     ink = _bgr(COLORS[inks[0]])
     cv2.fillPoly(img, [np.concatenate([upper, lower]).astype(np.int32)], ink, cv2.LINE_AA)
-    _wordmark(img, (h // 2, int(0.36 * h)), int(0.6 * h), int(0.18 * h), COLORS[inks[0]])
+    _sticker(img, inks, "", y=0.34)
 
 
 def _dial(img, inks, motif) -> None:
     """A dial (for a clock's face, whose hands are parts): twelve ticks in the first ink
     around the centre, the quarters longer."""
-    h, c = SIZE, (SIZE // 2, SIZE // 2)
+    h, w = img.shape[:2]
+    c, r = (w // 2, h // 2), min(w, h)
     ink = _bgr(COLORS[inks[0]])
     for k in range(12):
         a = 2 * math.pi * k / 12
         inner = 0.3 if k % 3 == 0 else 0.36
-        p0 = (int(c[0] + inner * h * math.cos(a)), int(c[1] + inner * h * math.sin(a)))
-        p1 = (int(c[0] + 0.43 * h * math.cos(a)), int(c[1] + 0.43 * h * math.sin(a)))
+        p0 = (int(c[0] + inner * r * math.cos(a)), int(c[1] + inner * r * math.sin(a)))
+        p1 = (int(c[0] + 0.43 * r * math.cos(a)), int(c[1] + 0.43 * r * math.sin(a)))
         cv2.line(img, p0, p1, ink, 9 if k % 3 == 0 else 5, cv2.LINE_AA)
     cv2.circle(img, c, 10, ink, -1, cv2.LINE_AA)
 
 
 def _grain(img, inks, motif) -> None:
     """Wood grain: wavy darker lines along the image, in shades of the ground colour."""
+    h, w = img.shape[:2]
     ground = _ground(img)
-    xs = np.arange(0, SIZE + 1, 4)
+    xs = np.arange(0, w + 1, 4)
     for k in range(9):
-        y0 = (k + 0.5) * SIZE / 9
-        ys = y0 + 4 * np.sin(2 * math.pi * (xs / SIZE * (1 + k % 3)) + k)
+        y0 = (k + 0.5) * h / 9
+        ys = y0 + 4 * np.sin(2 * math.pi * (xs / h * (1 + k % 3)) + k)
         pts = np.stack([xs, ys], axis=1).astype(np.int32)
         cv2.polylines(img, [pts], False, _bgr(_shade(ground, 0.85)), 2 + k % 2, cv2.LINE_AA)
 
 
 def _weave(img, inks, motif) -> None:
     """Woven fabric: alternating lighter and darker threads across and along."""
+    h, w = img.shape[:2]
     ground = _ground(img)
     step = 8
-    for k in range(0, SIZE, step):
+    for k in range(0, max(w, h), step):
         shade = 0.88 if (k // step) % 2 else 1.06
-        cv2.line(img, (k, 0), (k, SIZE), _bgr(_shade(ground, shade)), 2)
-        cv2.line(img, (0, k), (SIZE, k), _bgr(_shade(ground, 2.0 - shade)), 2)
+        cv2.line(img, (k, 0), (k, h), _bgr(_shade(ground, shade)), 2)
+        cv2.line(img, (0, k), (w, k), _bgr(_shade(ground, 2.0 - shade)), 2)
 
 
 PATTERNS = {
@@ -248,12 +268,23 @@ NEEDED_INKS = {
 }
 
 
+#: Patterns for a disc (a cylinder's round end shows the image's inscribed circle): drawn
+#: square whatever the part's side.
+ROUND = ("badge", "dial")
+#: The widest and narrowest surfaces an image is drawn for (width over height).
+ASPECTS = (0.25, 4.0)
+
+
 @cache
-def image(texture: Texture, rgb: tuple[float, float, float]) -> np.ndarray:
+def image(texture: Texture, rgb: tuple[float, float, float], aspect: float = 1.0) -> np.ndarray:
     """The RGBA image (SIZE x SIZE, uint8) of ``texture`` printed on a part of colour
-    ``rgb``; read-only."""
-    img = np.zeros((SIZE, SIZE, 4), np.uint8)
-    img[:, :] = _bgr(rgb)
-    PATTERNS[texture.pattern](img, texture.inks, texture.motif)
+    ``rgb`` whose surface is ``aspect`` times as wide as high (see ``uv_meshes.aspect``):
+    drawn at that shape (square for ``ROUND`` patterns), then squeezed to the square the
+    meshes stretch back; read-only."""
+    aspect = 1.0 if texture.pattern in ROUND else min(max(aspect, ASPECTS[0]), ASPECTS[1])
+    canvas = np.zeros((SIZE, int(round(SIZE * aspect)), 4), np.uint8)
+    canvas[:, :] = _bgr(rgb)
+    PATTERNS[texture.pattern](canvas, texture.inks, texture.motif)
+    img = cv2.resize(canvas, (SIZE, SIZE), interpolation=cv2.INTER_AREA)
     img.setflags(write=False)
     return img

@@ -104,6 +104,18 @@ def cylinder_obj(segments: int = SEGMENTS) -> str:
 WRITERS = {"box": box_obj, "cylinder": cylinder_obj}
 
 
+def aspect(shape: str, size: tuple[float, ...]) -> float:
+    """Width over height of the surface an image covers on a part of ``shape`` and
+    ``size``, rounded to a hundredth: a box's largest face, a cylinder's side (its ends
+    where it is a disc, no longer than its radius)."""
+    if shape == "box":
+        x, y, z = size
+        faces = {y * z: y / z, x * z: x / z, x * y: x / y}  # area -> width / height
+        return round(faces[max(faces)], 2)
+    radius, half = size
+    return 1.0 if 2 * half <= radius else round(math.pi * radius / half, 2)
+
+
 def mesh_path(shape: str) -> Path:
     """The shipped file of the textured unit ``shape``."""
     folder = resources.files("instructmove_ms.assets").joinpath("meshes")

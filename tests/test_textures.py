@@ -18,7 +18,7 @@ from instructmove_ms.assets.parts import X_TO_Z, Part
 from instructmove_ms.assets.photometry import _stage, rendered_part
 from instructmove_ms.assets.sapien_builder import add_part
 from instructmove_ms.assets.textures import Texture, image
-from instructmove_ms.assets.uv_meshes import SHAPES, WRITERS, mesh_path
+from instructmove_ms.assets.uv_meshes import SHAPES, WRITERS, aspect, mesh_path
 from instructmove_ms.assets.vocab import COLORS
 
 #: The packaged and printed objects two readers could not name from their plain close-ups.
@@ -81,12 +81,33 @@ def test_each_texture_keeps_its_part_colour_and_shows():
     part's own."""
     far = []
     for inst, part in _textured_parts(load_snapshot("printed")):
-        pixels = srgb_to_lab(image(part.texture, part.rgb)[..., :3].reshape(-1, 3) / 255.0)
+        drawn_on = image(part.texture, part.rgb, aspect(part.shape, part.size))
+        pixels = srgb_to_lab(drawn_on[..., :3].reshape(-1, 3) / 255.0)
         drawn = delta_e(dominant(pixels), srgb_to_lab(np.array(part.rgb)))
         assert drawn < 3, (inst.category, part.name, drawn)
         shown = delta_e(rendered_part(part), rendered_part(dataclasses.replace(part, texture=None)))
         far.append((shown, inst.category, part.name))
     assert max(far)[0] < DISTINCT, max(far)
+
+
+def test_prints_are_drawn_at_the_shape_of_their_surface():
+    """A can's side is about twice as wide as high: its image is drawn that wide and
+    squeezed (the mesh stretches it back), so a pictogram stays round; a disc's badge and
+    a box's largest face likewise."""
+    assert aspect("cylinder", (0.033, 0.05)) == 2.07  # pi r / half length
+    assert aspect("cylinder", (0.04, 0.001)) == 1.0  # a disc shows its ends
+    assert aspect("box", (0.05, 0.02, 0.01)) == 2.5  # the top, x over y
+    fruit = Texture("sticker", ("white", "yellow"), "fruit")
+    wide, square = image(fruit, COLORS["red"], 2.0), image(fruit, COLORS["red"], 1.0)
+    yellow = np.array([int(255 * v) for v in COLORS["yellow"]])
+
+    def fruit_width_over_height(img):
+        rows, cols = np.nonzero((np.abs(img[..., :3].astype(int) - yellow) < 40).all(axis=-1))
+        return (np.ptp(cols) + 1) / (np.ptp(rows) + 1)
+
+    assert fruit_width_over_height(wide) == pytest.approx(fruit_width_over_height(square) / 2, 0.15)
+    badge = Texture("badge", ("white", "yellow"), "fruit")
+    assert (image(badge, COLORS["red"], 3.0) == image(badge, COLORS["red"], 1.0)).all()
 
 
 def test_a_print_shows_on_the_camera():
