@@ -41,10 +41,20 @@ def test_one_unlabelled_close_up_per_category_and_its_key(tmp_path):
 
 
 def test_the_cli_writes_the_recognition_sheet_for_the_categories_asked(tmp_path, capsys):
+    """By default it photographs the default (printed) snapshot: the cola can with its
+    print, not the plain one."""
     out = tmp_path / "recognition"
-    assert main(["assets", "sheet", "--category", "apple", "--recognition", str(out)]) == 0
-    printed = capsys.readouterr().out.split()
-    assert printed == [str(out / "recognition.png"), str(out / "recognition_key.png")]
-    sheet = cv2.imread(printed[0])
+    assert main(["assets", "sheet", "--category", "canned_coke", "--recognition", str(out)]) == 0
+    written = capsys.readouterr().out.split()
+    assert written == [str(out / "recognition.png"), str(out / "recognition_key.png")]
+    sheet = cv2.imread(written[0])
     assert sheet.shape == (TILE, 10 * TILE, 3)  # one category: one tile and nine blanks
     assert (sheet[:, TILE:] == 255).all()
+    tile = sheet[KEY_BAND:, :TILE, ::-1].astype(int)
+    printed, plain = (
+        load_snapshot(n).of_category("canned_coke")[0] for n in ("printed", "default")
+    )
+    seen = [
+        np.abs(tile - photograph([i])[0][KEY_BAND:].astype(int)).mean() for i in (printed, plain)
+    ]
+    assert seen[0] < 2 < seen[1], seen

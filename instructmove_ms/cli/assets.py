@@ -145,9 +145,15 @@ def _cmd_assets_import(args: argparse.Namespace) -> int:
 
 
 def add_parsers(sub: argparse._SubParsersAction) -> None:
+    from instructmove_ms.assets.snapshot import DEFAULT_SNAPSHOT, SHIPPED
+
     assets = _add_group(sub, "assets", "the object library")
     p = assets.add_parser("build", help="generate the library and freeze it as a snapshot")
-    p.add_argument("--name", default="default", help="snapshot name (default: the shipped one)")
+    p.add_argument(
+        "--name",
+        default=DEFAULT_SNAPSHOT,
+        help=f"snapshot name (default: {DEFAULT_SNAPSHOT}; {' and '.join(SHIPPED)} ship)",
+    )
     p.add_argument("--per-category", type=int, default=INSTANCES_PER_CATEGORY)
     p.add_argument(
         "--plain",
@@ -164,7 +170,7 @@ def add_parsers(sub: argparse._SubParsersAction) -> None:
     p.add_argument("source", help="folder with metadata.json and the mesh files")
     p.add_argument("--name", required=True, help="name of the new snapshot")
     p.add_argument(
-        "--extend", default="default", help="snapshot to add the assets to ('' for none)"
+        "--extend", default=DEFAULT_SNAPSHOT, help="snapshot to add the assets to ('' for none)"
     )
     p.set_defaults(func=_cmd_assets_import)
     for name, func, text in (
@@ -173,7 +179,7 @@ def add_parsers(sub: argparse._SubParsersAction) -> None:
         ("sheet", _cmd_assets_sheet, "write a labelled contact sheet PNG per super-category"),
     ):
         p = assets.add_parser(name, help=text)
-        p.add_argument("--snapshot", default="default")
+        p.add_argument("--snapshot", default=DEFAULT_SNAPSHOT, help="(default: %(default)s)")
         p.add_argument("--category", default=None, help="only this category")
         p.set_defaults(func=func)
         if name == "list":
