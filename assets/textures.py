@@ -162,13 +162,13 @@ def _sticker(img, inks, motif, y: float = 0.5) -> None:
     the part's own colour, centred at ``y`` of the height."""
     h = img.shape[0]
     cy = int(y * h)
-    centres, scale = _centres(img, 1.1 if motif else 0.9)
-    word_h, radius = int(0.18 * h * scale), int(0.15 * h * scale)
+    centres, scale = _centres(img, 1.3 if motif else 0.9)
+    word_h, radius = int(0.18 * h * scale), int(0.3 * h * scale)
     for cx in centres:
-        if motif:
-            at = (int(cx - 0.17 * h * scale), cy)
+        if motif:  # the pictogram large (what a shopper spots first), the wordmark beside
+            at = (int(cx - 0.36 * h * scale), cy)
             _wordmark(img, at, int(0.5 * h * scale), word_h, COLORS[inks[0]])
-            _motif(img, motif, (int(cx + 0.33 * h * scale), cy), radius, COLORS[inks[-1]])
+            _motif(img, motif, (int(cx + 0.3 * h * scale), cy), radius, COLORS[inks[-1]])
         else:
             _wordmark(img, (int(cx), cy), int(0.75 * h * scale), word_h, COLORS[inks[0]])
 
