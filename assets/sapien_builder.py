@@ -12,6 +12,7 @@ import sapien.render as render
 
 from .catalog import Instance
 from .parts import Part
+from .snapshot import plain
 from .textures import Texture, image
 from .uv_meshes import aspect, mesh_path
 from .vocab import MATERIALS
@@ -98,8 +99,11 @@ def add_part(builder: sapien.ActorBuilder, part: Part) -> None:
 
 
 def actor_builder(scene, instance: Instance) -> sapien.ActorBuilder:
-    """A dynamic-actor builder holding every part of ``instance``."""
+    """A dynamic-actor builder holding every part of ``instance``; its textures only where
+    ``scene`` renders (a texture made without a renderer starts one on SAPIEN's default
+    device, and a rendering env made later in the process could not start its own)."""
+    renders = getattr(scene, "can_render", lambda: True)()  # our bare scenes always render
     builder = scene.create_actor_builder()
-    for part in instance.parts:
+    for part in instance.parts if renders else plain(instance).parts:
         add_part(builder, part)
     return builder

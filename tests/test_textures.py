@@ -165,3 +165,29 @@ def test_a_snapshot_frozen_without_textures_rebuilds_them_plain(tmp_path, monkey
     assert loaded == snap.plain(coke)
     with pytest.raises(ValueError, match="is stale: canned_coke #0"):
         snap._checked("old", {**data, "textures": True})
+
+
+def test_a_state_env_then_a_rendering_env_in_one_process(tmp_path):
+    """An env without a renderer builds its printed objects plain (a texture made there
+    would start SAPIEN's renderer on another device); a rendering env made after it in the
+    same process starts and shows the prints. In a fresh process: the suite's own
+    processes have started a renderer already."""
+    import subprocess
+    import sys
+
+    script = tmp_path / "two_envs.py"
+    script.write_text(
+        "import gymnasium as gym\n"
+        "import instructmove_ms\n"
+        "from sapien.render import RenderBodyComponent\n"
+        "kw = dict(robot_uids='franka', obs_mode='state')\n"
+        "gym.make('PickCategory-InstructMove', render_backend='none', **kw).reset(seed=0)\n"
+        "env = gym.make('PickCategory-InstructMove', **{**kw, 'obs_mode': 'rgb'})\n"
+        "env.reset(seed=0)\n"
+        "shapes = [s for a in env.unwrapped.objects for e in a._objs\n"
+        "          for s in e.find_component_by_type(RenderBodyComponent).render_shapes]\n"
+        "print(sum(s.material.base_color_texture is not None for s in shapes))\n"
+    )
+    done = subprocess.run([sys.executable, str(script)], capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr[-2000:]
+    assert int(done.stdout.split()[-1]) > 0, "seed 0's scene holds a printed object"
