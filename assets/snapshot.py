@@ -115,7 +115,12 @@ def load_snapshot(name: str = DEFAULT_SNAPSHOT) -> Catalog:
 
 def wears_textures(name: str) -> bool:
     """Whether the instances of snapshot ``name`` wear their textures."""
-    return json.loads(_existing(name).read_text()).get("textures", False)
+    return _textured(json.loads(_existing(name).read_text()))
+
+
+def _textured(data: dict) -> bool:
+    """Whether snapshot file ``data`` wears textures (files from before them do not)."""
+    return data.get("textures", False)
 
 
 def _existing(name: str) -> Path:
@@ -132,7 +137,7 @@ def _checked(name: str, data: dict) -> list[Instance]:
     scheme = data.get("identity", 1)
     instances = []
     for entry in data["instances"]:
-        inst = _load_entry(name, entry, data.get("textures", False))
+        inst = _load_entry(name, entry, _textured(data))
         if inst.uuid != entry["uuid"] or hash_for(inst, scheme) != entry["content_hash"]:
             hint = (
                 " (it was frozen with exact floats, identity scheme 1, which another "
@@ -165,7 +170,7 @@ def rehash(name: str) -> tuple[int, int]:
         {**e, "content_hash": content_hash(i)}
         for e, i in zip(data["instances"], instances, strict=True)
     ]
-    write_snapshot(path, name, entries, data.get("textures", False))
+    write_snapshot(path, name, entries, _textured(data))
     load_snapshot.cache_clear()
     table = table_path(name)
     kept = rehash_table(table, old, instances) if table.is_file() else 0

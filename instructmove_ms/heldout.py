@@ -88,14 +88,14 @@ def generate_set(
     of ``measured`` (an earlier version's set) with the same scene lends its figures
     instead of a render: visibility depends on the scene alone."""
     unwrapped = env.unwrapped
-    known = {_scene(s): s.certificate["visibility"] for s in measured}
+    known = {scene_key(s): s.certificate["visibility"] for s in measured}
     kept = 0
     for index in range(count * SEEDS_PER_EPISODE):
         if kept == count:
             return
         seed = eval_seed(unwrapped.split, index)
         spec = unwrapped.sample_episode(seed)
-        figures = known.get(_scene(spec))
+        figures = known.get(scene_key(spec))
         if figures is None:
             env.reset(seed=seed)
             spec, figures = unwrapped.episode, measure(env)
@@ -108,8 +108,8 @@ def generate_set(
     )
 
 
-def _scene(spec: EpisodeSpec) -> str:
-    """What the cameras see of ``spec``'s scene: its robot, objects and poses."""
+def scene_key(spec: EpisodeSpec) -> str:
+    """What the cameras see of ``spec``'s scene (its robot, objects and poses), as a key."""
     objects = [dataclasses.asdict(o) for o in spec.objects]
     return json.dumps([spec.robot, list(spec.robot_qpos), objects])
 

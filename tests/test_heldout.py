@@ -149,7 +149,7 @@ def test_version_3_plays_on_the_plain_snapshot_it_was_published_on():
     env_id, robot = "PickCategory-InstructMove", "franka"
     old, new = (heldout.load_set(env_id, robot, "seen", version=v) for v in (3, 4))
     assert {s.snapshot for s in old} == {"default"} and {s.snapshot for s in new} == {"printed"}
-    assert [heldout._scene(s) for s in old] == [heldout._scene(s) for s in new]
+    assert [heldout.scene_key(s) for s in old] == [heldout.scene_key(s) for s in new]
     k = next(  # an episode with a printed object
         k
         for k, s in enumerate(new)
