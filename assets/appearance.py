@@ -119,7 +119,7 @@ def _table(snapshot: str = "default") -> dict:
     return json.loads(path.read_text()) if path.is_file() else {"instances": {}, "swatches": {}}
 
 
-def _stored(instance: Instance) -> tuple[float, ...] | None:
+def stored_lab(instance: Instance) -> tuple[float, ...] | None:
     """The instance's colour from a shipped table measured on this very content."""
     digest = content_hash(instance)
     for path in sorted(table_path().parent.glob("*.json")):
@@ -147,7 +147,7 @@ def _measured(kind: str, *args) -> tuple[float, ...]:
 def lab_of(instance: Instance) -> tuple[float, ...]:
     """The instance's rendered colour: from a shipped table where it was measured on this
     very content (the same on every machine), else rendered now."""
-    stored = _stored(instance)
+    stored = stored_lab(instance)
     return stored if stored is not None else _measured("instance", instance)
 
 

@@ -13,7 +13,7 @@ import numpy as np
 import yaml
 
 from .design import Design
-from .generators import GENERATORS
+from .generators import GENERATORS, LIBRARY, generator_at
 from .parts import Part, Region, union_bounds
 from .textures import Texture
 from .vocab import material_word
@@ -166,19 +166,23 @@ def _texture_of(record: dict | None) -> Texture | None:
     return Texture(record["pattern"], tuple(record["inks"]), record["motif"])
 
 
-def instance_uuid(category: str, index: int) -> str:
-    return str(uuidlib.uuid5(UUID_NAMESPACE, f"{category}/{index}"))
+def instance_uuid(category: str, index: int, revision: int = 1) -> str:
+    """The uuid of instance ``index`` of ``category`` as built by its generator's
+    ``revision`` (a revised build is another asset, with its own uuid and draws)."""
+    suffix = "" if revision == 1 else f"@r{revision}"
+    return str(uuidlib.uuid5(UUID_NAMESPACE, f"{category}/{index}{suffix}"))
 
 
-def generate_instance(category: str, index: int) -> Instance:
-    """Build instance ``index`` of ``category``; the same arguments give the same object."""
+def generate_instance(category: str, index: int, library: int = LIBRARY) -> Instance:
+    """Build instance ``index`` of ``category`` as library revision ``library`` builds it;
+    the same arguments give the same object."""
     if category not in GENERATORS:
         raise KeyError(f"no generator for category {category!r}; known: {sorted(GENERATORS)}")
-    gen = GENERATORS[category]
+    gen = generator_at(category, library)
     entry = taxonomy().get(category)
     if entry is None:
         raise KeyError(f"category {category!r} is not in the taxonomy")
-    uid = instance_uuid(category, index)
+    uid = instance_uuid(category, index, gen.revision)
     design = Design(np.random.default_rng(uuidlib.UUID(uid).int % 2**63))
     traits = gen.build(design)
     if not 1 <= len(traits.colors) <= 2:

@@ -11,7 +11,7 @@ from pathlib import Path
 import numpy as np
 import sapien
 
-from .appearance import MEASURES, dominant, srgb_to_lab, write_table_file
+from .appearance import MEASURES, dominant, srgb_to_lab, stored_lab, write_table_file
 from .catalog import Instance
 from .identity import content_hash
 from .parts import Part
@@ -98,9 +98,13 @@ def rendered_swatch(color: str, material: str) -> tuple[float, ...]:
 
 def write_table(instances: Iterable[Instance], path: Path) -> Path:
     """Measure the rendered colours of ``instances`` (with their content hashes) and of
-    every swatch, and write them (atomically), one entry per line."""
+    every swatch, and write them (atomically), one entry per line. An instance a shipped
+    table measured on this very content keeps that colour (it renders the same)."""
     rows = {
-        inst.uuid: {"hash": content_hash(inst), "lab": list(rendered_color(inst))}
+        inst.uuid: {
+            "hash": content_hash(inst),
+            "lab": list(stored_lab(inst) or rendered_color(inst)),
+        }
         for inst in instances
     }
     swatches = {

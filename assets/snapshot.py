@@ -7,11 +7,15 @@ instance and refuses a snapshot whose content no longer matches, so an experimen
 silently run on changed assets. Growing the library (new categories, more instances) writes
 a new snapshot; old ones keep their meaning.
 
-A snapshot also records whether its instances wear their textures (printed labels, dials,
-grain: ``textures``); one written without (every snapshot from before textures) rebuilds
-its instances plain, as they were when it was frozen. Two ship with the package:
-``printed``, the library as it looks now, and ``default``, the same instances plain, on
-which the held-out sets of versions 2 and 3 were published.
+A snapshot also records how its instances are built (``Frozen``): whether they wear their
+textures (printed labels, dials, grain: ``textures``; one written without, as every snapshot
+from before textures, rebuilds its instances plain), and the library revision it was frozen
+at (``library``; absent means 1): each category is rebuilt by its newest generator at or
+before that revision (``generators.registry``), so a revised generator never changes an
+older snapshot. Three ship with the package: ``detailed``, the library as it looks now
+(revision 2), ``printed``, revision 1 with its prints, and ``default``, revision 1 plain, on
+which the held-out sets of versions 2 and 3 were published (version 4 plays on ``printed``,
+5 on ``detailed``).
 """
 
 from __future__ import annotations
@@ -25,14 +29,29 @@ from pathlib import Path
 
 from ..files import write_json, write_text
 from .catalog import Catalog, Instance, generate_instance
-from .generators import GENERATORS
+from .generators import GENERATORS, LIBRARY
 from .identity import IDENTITY_SCHEME, content_hash, hash_for
 from .importer import data_home
 
-DEFAULT_SNAPSHOT = "printed"
+DEFAULT_SNAPSHOT = "detailed"
 SNAPSHOT_DIR = "snapshots"
-#: The snapshots that ship with the package, and whether their instances wear textures.
-SHIPPED = {"default": False, "printed": True}
+
+
+@dataclass(frozen=True)
+class Frozen:
+    """How a snapshot builds its instances: with their textures or plain, and at which
+    library revision (see ``generators.registry``)."""
+
+    textures: bool = True
+    library: int = LIBRARY
+
+
+#: The snapshots that ship with the package, and how each builds its instances.
+SHIPPED = {
+    "default": Frozen(textures=False, library=1),
+    "printed": Frozen(textures=True, library=1),
+    "detailed": Frozen(textures=True, library=2),
+}
 
 
 def plain(inst: Instance) -> Instance:
@@ -43,21 +62,29 @@ def plain(inst: Instance) -> Instance:
     return dataclasses.replace(inst, parts=parts)
 
 
-def build_entries(categories: list[str], per_category: int, textures: bool = True) -> list[dict]:
-    """The entries of instances ``0 .. per_category - 1`` of each of ``categories``, with
-    their textures or plain."""
-    look = (lambda i: i) if textures else plain
+def build_entries(
+    categories: list[str], per_category: int, frozen: Frozen = Frozen()
+) -> list[dict]:
+    """The entries of instances ``0 .. per_category - 1`` of each of ``categories``, built
+    as ``frozen`` says."""
     return [
-        entry_of(look(generate_instance(cat, index)))
-        for cat in categories
-        for index in range(per_category)
+        entry_of(_built(cat, index, frozen)) for cat in categories for index in range(per_category)
     ]
 
 
-def write_snapshot(path: Path, name: str, entries: list[dict], textures: bool = True) -> Path:
+def _built(category: str, index: int, frozen: Frozen) -> Instance:
+    inst = generate_instance(category, index, frozen.library)
+    return inst if frozen.textures else plain(inst)
+
+
+def write_snapshot(path: Path, name: str, entries: list[dict], frozen: Frozen = Frozen()) -> Path:
     """Write atomically (temporary file in the same folder, then rename), under the
-    current identity scheme."""
-    data = {"identity": IDENTITY_SCHEME, "name": name, "instances": entries, "textures": textures}
+    current identity scheme. The library revision is written only past 1, so files from
+    before revisions keep their bytes."""
+    data = {"identity": IDENTITY_SCHEME, "name": name, "instances": entries}
+    data["textures"] = frozen.textures
+    if frozen.library > 1:
+        data["library"] = frozen.library
     return write_text(path, json.dumps(data, indent=1, sort_keys=True) + "\n")
 
 
@@ -89,7 +116,7 @@ def available_snapshots() -> list[str]:
     return sorted(names)
 
 
-def _load_entry(name: str, entry: dict, textures: bool) -> Instance:
+def _load_entry(name: str, entry: dict, frozen: Frozen) -> Instance:
     if entry.get("source") == "import":
         path = imported_record_path(entry["uuid"])
         if not path.is_file():
@@ -103,8 +130,7 @@ def _load_entry(name: str, entry: dict, textures: bool) -> Instance:
             f"snapshot {name!r} needs category {entry['category']!r}, "
             "which has no generator in this version"
         )
-    inst = generate_instance(entry["category"], entry["index"])
-    return inst if textures else plain(inst)
+    return _built(entry["category"], entry["index"], frozen)
 
 
 @cache
@@ -113,14 +139,20 @@ def load_snapshot(name: str = DEFAULT_SNAPSHOT) -> Catalog:
     return Catalog(name, _checked(name, json.loads(_existing(name).read_text())))
 
 
+def frozen_as(name: str) -> Frozen:
+    """How snapshot ``name`` builds its instances."""
+    return _frozen(json.loads(_existing(name).read_text()))
+
+
 def wears_textures(name: str) -> bool:
     """Whether the instances of snapshot ``name`` wear their textures."""
-    return _textured(json.loads(_existing(name).read_text()))
+    return frozen_as(name).textures
 
 
-def _textured(data: dict) -> bool:
-    """Whether snapshot file ``data`` wears textures (files from before them do not)."""
-    return data.get("textures", False)
+def _frozen(data: dict) -> Frozen:
+    """How snapshot file ``data`` builds its instances (files from before textures are
+    plain; files from before revisions are at library revision 1)."""
+    return Frozen(data.get("textures", False), data.get("library", 1))
 
 
 def _existing(name: str) -> Path:
@@ -137,7 +169,7 @@ def _checked(name: str, data: dict) -> list[Instance]:
     scheme = data.get("identity", 1)
     instances = []
     for entry in data["instances"]:
-        inst = _load_entry(name, entry, _textured(data))
+        inst = _load_entry(name, entry, _frozen(data))
         if inst.uuid != entry["uuid"] or hash_for(inst, scheme) != entry["content_hash"]:
             hint = (
                 " (it was frozen with exact floats, identity scheme 1, which another "
@@ -170,7 +202,7 @@ def rehash(name: str) -> tuple[int, int]:
         {**e, "content_hash": content_hash(i)}
         for e, i in zip(data["instances"], instances, strict=True)
     ]
-    write_snapshot(path, name, entries, _textured(data))
+    write_snapshot(path, name, entries, _frozen(data))
     load_snapshot.cache_clear()
     table = table_path(name)
     kept = rehash_table(table, old, instances) if table.is_file() else 0
@@ -239,7 +271,7 @@ def import_folder(
     for inst in kept:
         write_json(imported_record_path(inst.uuid), inst.to_record(), indent=None)
     snapshot = [entry_of(i) for i in base + kept]
-    textures = wears_textures(extend) if extend else True
-    path = write_snapshot(user_snapshot_dir() / f"{name}.json", name, snapshot, textures)
+    frozen = frozen_as(extend) if extend else Frozen()
+    path = write_snapshot(user_snapshot_dir() / f"{name}.json", name, snapshot, frozen)
     load_snapshot.cache_clear()
     return ImportReport(path, rejected, repaired)

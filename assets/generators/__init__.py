@@ -15,6 +15,22 @@ from . import (  # noqa: F401  (registration)
     stationery,
     tools,
 )
-from .registry import GENERATORS, CategoryGenerator, generator
+from .registry import (
+    GENERATORS,
+    LIBRARY,
+    REVISIONS,
+    CategoryGenerator,
+    generator,
+    generator_at,
+    revised,
+)
 
-__all__ = ["GENERATORS", "CategoryGenerator", "generator"]
+__all__ = [
+    "GENERATORS",
+    "LIBRARY",
+    "REVISIONS",
+    "CategoryGenerator",
+    "generator",
+    "generator_at",
+    "revised",
+]

@@ -1,11 +1,21 @@
-"""Registry of category generators."""
+"""Registry of category generators, and their revisions.
+
+A category's generator can be revised (a better shape, a part it lacked). The library moves
+in numbered revisions: revision 1 is every category as first built, and a later build is
+registered with the library revision it came in. A snapshot records the library revision it
+was frozen at, so it keeps regenerating its instances exactly, whatever came after.
+"""
 
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Callable
 from dataclasses import dataclass
 
 from ..design import Design, Traits
+
+#: The newest library revision (what ``assets build`` freezes unless told otherwise).
+LIBRARY = 2
 
 
 @dataclass(frozen=True)
@@ -18,9 +28,13 @@ class CategoryGenerator:
     size: tuple[float, float]  # plausible range of the largest dimension, metres
     graspable: bool = True
     container: bool = False
+    revision: int = 1  # the library revision this build came in
 
 
+#: The newest build of every category.
 GENERATORS: dict[str, CategoryGenerator] = {}
+#: Every build of every category, by the library revision it came in.
+REVISIONS: dict[str, dict[int, CategoryGenerator]] = {}
 
 
 def generator(
@@ -31,7 +45,7 @@ def generator(
     graspable: bool = True,
     container: bool = False,
 ):
-    """Register ``build`` as the generator of ``category``.
+    """Register ``build`` as the generator of ``category`` (library revision 1).
 
     ``size`` is the category prior on the largest dimension (checked on every instance);
     ``synonyms`` are the nouns people use, most common first (default: the category name);
@@ -42,7 +56,39 @@ def generator(
         if category in GENERATORS:
             raise ValueError(f"category {category!r} has two generators")
         nouns = synonyms or (category.replace("_", " "),)
-        GENERATORS[category] = CategoryGenerator(category, build, nouns, size, graspable, container)
+        _add(CategoryGenerator(category, build, nouns, size, graspable, container))
         return build
 
     return register
+
+
+def revised(category: str, revision: int):
+    """Register ``build`` as the generator of ``category`` from library ``revision`` on: the
+    same thing (nouns, size prior, kind) built better. Earlier revisions keep their build."""
+    if not 2 <= revision <= LIBRARY:
+        raise ValueError(f"{category}: a revision is numbered 2..{LIBRARY}, got {revision}")
+
+    def register(build: Callable[[Design], Traits]) -> Callable[[Design], Traits]:
+        if category not in GENERATORS:
+            raise ValueError(f"cannot revise {category!r}: it has no generator yet")
+        if revision in REVISIONS[category]:
+            raise ValueError(f"category {category!r} has two builds at revision {revision}")
+        _add(dataclasses.replace(GENERATORS[category], build=build, revision=revision))
+        return build
+
+    return register
+
+
+def _add(gen: CategoryGenerator) -> None:
+    builds = REVISIONS.setdefault(gen.category, {})
+    builds[gen.revision] = gen
+    GENERATORS[gen.category] = builds[max(builds)]
+
+
+def generator_at(category: str, library: int) -> CategoryGenerator:
+    """The build of ``category`` that library revision ``library`` uses (its newest build at
+    or before it)."""
+    if not 1 <= library <= LIBRARY:
+        raise ValueError(f"library revision {library} is not in 1..{LIBRARY}")
+    builds = REVISIONS[category]
+    return builds[max(r for r in builds if r <= library)]

@@ -99,15 +99,16 @@ def _cmd_assets_build(args: argparse.Namespace) -> int:
 
     categories = sorted(GENERATORS)
     shipped = args.name in snap.SHIPPED
-    textures = snap.SHIPPED[args.name] if shipped else not args.plain
+    frozen = snap.SHIPPED[args.name] if shipped else snap.Frozen(textures=not args.plain)
     entries = []
     for category in tqdm(categories, desc="generating", unit="category"):
-        entries += snap.build_entries([category], args.per_category, textures)
+        entries += snap.build_entries([category], args.per_category, frozen)
     folder = snap.package_snapshot_dir() if shipped else snap.user_snapshot_dir()
-    path = snap.write_snapshot(folder / f"{args.name}.json", args.name, entries, textures)
+    path = snap.write_snapshot(folder / f"{args.name}.json", args.name, entries, frozen)
     print(
         f"snapshot {args.name!r}: {len(entries)} instances of {len(categories)} categories "
-        f"({'textured' if textures else 'plain'}) -> {path}"
+        f"({'textured' if frozen.textures else 'plain'}, library revision {frozen.library}) "
+        f"-> {path}"
     )
     if shipped:  # other snapshots' colours are rendered on use
         from instructmove_ms.assets.appearance import table_path
@@ -152,13 +153,14 @@ def add_parsers(sub: argparse._SubParsersAction) -> None:
     p.add_argument(
         "--name",
         default=DEFAULT_SNAPSHOT,
-        help=f"snapshot name (default: {DEFAULT_SNAPSHOT}; {' and '.join(SHIPPED)} ship)",
+        help=f"snapshot name (default: {DEFAULT_SNAPSHOT}; {', '.join(SHIPPED)} ship)",
     )
     p.add_argument("--per-category", type=int, default=INSTANCES_PER_CATEGORY)
     p.add_argument(
         "--plain",
         action="store_true",
-        help="instances without their textures (the shipped snapshots know their own look)",
+        help="instances without their textures (the shipped snapshots know their own look "
+        "and library revision; others are built at the newest)",
     )
     p.set_defaults(func=_cmd_assets_build)
     p = assets.add_parser(
