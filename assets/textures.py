@@ -224,6 +224,41 @@ def _dial(img, inks, motif) -> None:
     cv2.circle(img, c, 10, ink, -1, cv2.LINE_AA)
 
 
+#: The lit segments of each digit of a seven-segment display, as (x0, y0, x1, y1) in a
+#: digit cell one unit wide and two high.
+_SEGMENTS = {
+    "a": (0, 0, 1, 0),
+    "b": (1, 0, 1, 1),
+    "c": (1, 1, 1, 2),
+    "d": (0, 2, 1, 2),
+    "e": (0, 1, 0, 2),
+    "f": (0, 0, 0, 1),
+    "g": (0, 1, 1, 1),
+}
+_LIT = {"0": "abcdef", "1": "bc", "2": "abged", "3": "abgcd", "7": "abc", "8": "abcdefg"}
+
+
+def _digits(img, inks, motif) -> None:
+    """A seven-segment time (twelve thirty-eight, say) in the first ink, the width of the
+    image, with the colon between hours and minutes."""
+    h, w = img.shape[:2]
+    cell = min(w / 5.6, h * 0.38)  # a digit's width
+    x0, y0 = (w - 5.2 * cell) / 2, (h - 2 * cell) / 2  # the last digit ends at 5.2 cells
+    ink, thick = _bgr(COLORS[inks[0]]), max(2, int(cell * 0.16))
+    for k, digit in enumerate("12 38"):
+        left = x0 + k * 1.1 * cell
+        if digit == " ":
+            for dy in (0.6, 1.4):
+                centre = (int(left + 0.45 * cell), int(y0 + dy * cell))
+                cv2.circle(img, centre, thick // 2 + 1, ink, -1, cv2.LINE_AA)
+            continue
+        for seg in _LIT[digit]:
+            a, b, c, d = _SEGMENTS[seg]
+            p0 = (int(left + a * cell * 0.8), int(y0 + b * cell))
+            p1 = (int(left + c * cell * 0.8), int(y0 + d * cell))
+            cv2.line(img, p0, p1, ink, thick, cv2.LINE_AA)
+
+
 def _grain(img, inks, motif) -> None:
     """Wood grain: wavy darker lines along the image, in shades of the ground colour."""
     h, w = img.shape[:2]
@@ -253,6 +288,7 @@ PATTERNS = {
     "badge": _badge,
     "wave": _wave,
     "dial": _dial,
+    "digits": _digits,
     "grain": _grain,
     "weave": _weave,
 }
@@ -263,6 +299,7 @@ NEEDED_INKS = {
     "badge": 1,
     "wave": 1,
     "dial": 1,
+    "digits": 1,
     "grain": 0,
     "weave": 0,
 }

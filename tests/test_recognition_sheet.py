@@ -8,6 +8,7 @@ import numpy as np
 
 from instructmove_ms.assets import load_snapshot
 from instructmove_ms.assets.sheet import TILE, photograph, recognition_sheet
+from instructmove_ms.assets.snapshot import DEFAULT_SNAPSHOT
 from instructmove_ms.cli import main
 
 CATEGORIES = ("canned_coke", "apple", "alarm_clock")
@@ -41,8 +42,8 @@ def test_one_unlabelled_close_up_per_category_and_its_key(tmp_path):
 
 
 def test_the_cli_writes_the_recognition_sheet_for_the_categories_asked(tmp_path, capsys):
-    """By default it photographs the default (printed) snapshot: the cola can with its
-    print, not the plain one."""
+    """By default it photographs the default snapshot (``detailed``, which wears prints):
+    the cola can with its print, not the plain one."""
     out = tmp_path / "recognition"
     assert main(["assets", "sheet", "--category", "canned_coke", "--recognition", str(out)]) == 0
     written = capsys.readouterr().out.split()
@@ -52,7 +53,7 @@ def test_the_cli_writes_the_recognition_sheet_for_the_categories_asked(tmp_path,
     assert (sheet[:, TILE:] == 255).all()
     tile = sheet[KEY_BAND:, :TILE, ::-1].astype(int)
     printed, plain = (
-        load_snapshot(n).of_category("canned_coke")[0] for n in ("printed", "default")
+        load_snapshot(n).of_category("canned_coke")[0] for n in (DEFAULT_SNAPSHOT, "default")
     )
     seen = [
         np.abs(tile - photograph([i])[0][KEY_BAND:].astype(int)).mean() for i in (printed, plain)

@@ -37,10 +37,10 @@ READER_MISSES = (
 )
 
 
-def _textured_parts(catalog):
-    """Each distinct textured part of ``catalog`` (by recipe, colour, material and size)."""
+def _textured_parts(*catalogs):
+    """Each distinct textured part of ``catalogs`` (by recipe, colour, material and size)."""
     seen = {}
-    for inst in catalog.instances:
+    for inst in (i for catalog in catalogs for i in catalog.instances):
         for part in inst.parts:
             if part.texture is not None:
                 key = (part.texture, part.color, part.material, part.shape, part.size)
@@ -80,7 +80,8 @@ def test_each_texture_keeps_its_part_colour_and_shows():
     self (its annotation: never a colour apart), and its image's dominant colour is the
     part's own."""
     far = []
-    for inst, part in _textured_parts(load_snapshot("printed")):
+    textured = [load_snapshot(n) for n, frozen in snap.SHIPPED.items() if frozen.textures]
+    for inst, part in _textured_parts(*textured):
         drawn_on = image(part.texture, part.rgb, aspect(part.shape, part.size))
         pixels = srgb_to_lab(drawn_on[..., :3].reshape(-1, 3) / 255.0)
         drawn = delta_e(dominant(pixels), srgb_to_lab(np.array(part.rgb)))
@@ -159,7 +160,7 @@ def test_a_snapshot_frozen_without_textures_rebuilds_them_plain(tmp_path, monkey
     coke = generate_instance("canned_coke", 0)
     assert any(p.texture is not None for p in coke.parts)
     entry = snap.entry_of(snap.plain(coke))
-    path = snap.write_snapshot(tmp_path / "old.json", "old", [entry], textures=False)
+    path = snap.write_snapshot(tmp_path / "old.json", "old", [entry], snap.Frozen(False, 1))
     data = {k: v for k, v in json.loads(path.read_text()).items() if k != "textures"}
     (loaded,) = snap._checked("old", data)
     assert loaded == snap.plain(coke)

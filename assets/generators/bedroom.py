@@ -7,7 +7,7 @@ import math
 from ..design import Design, Traits
 from ..parts import X_TO_Y, axis_angle_quat
 from ..textures import Texture
-from .registry import generator
+from .registry import generator, revised
 
 
 def _open_lid(
@@ -277,11 +277,28 @@ def flashlight(d: Design) -> Traits:
     return Traits(colors, material, "cylinder")
 
 
+ALARM_CLOCK_COLORS = ["red", "black", "white", "blue", "green", "silver", "pink", "yellow"]
+
+
 @generator("alarm_clock", size=(0.08, 0.18), synonyms=("alarm clock",))
 def alarm_clock(d: Design) -> Traits:
-    color = d.choice(["red", "black", "white", "blue", "green", "silver", "pink", "yellow"])
+    color = d.choice(ALARM_CLOCK_COLORS)
     if d.rng.random() < 0.5:
         return _digital_clock(d, color)
+    return _twin_bell_clock(d, color)
+
+
+@revised("alarm_clock", 2)
+def alarm_clock_2(d: Design) -> Traits:
+    """Revision 2: the digital clock is a low wedge with a lit seven-segment time on a dark
+    screen and buttons on top (the first read as a radio); the twin-bell clock is unchanged."""
+    color = d.choice(ALARM_CLOCK_COLORS)
+    if d.rng.random() < 0.5:
+        return _digital_clock_2(d, color)
+    return _twin_bell_clock(d, color)
+
+
+def _twin_bell_clock(d: Design, color: str) -> Traits:
     rc, depth, leg = d.uniform(0.04, 0.055), d.uniform(0.032, 0.045), d.uniform(0.01, 0.015)
     zc = leg + rc
     material = "metal" if color == "silver" else d.choice(["metal", "plastic"])
@@ -355,4 +372,47 @@ def _digital_clock(d: Design, color: str) -> Traits:
             visual_only=True,
         )
     d.box("snooze", (hx * 0.5, hy * 0.4, 0.003), (0, 0, 2 * hz + 0.003), "plastic", "gray")
+    return Traits((color,), "plastic", "cuboid")
+
+
+def _digital_clock_2(d: Design, color: str) -> Traits:
+    """A bedside digital clock facing +x: a body wider than high whose front leans back,
+    a black screen with the time lit in red, green, blue or white, two buttons on top."""
+    hx, hy, hz = d.uniform(0.022, 0.028), d.uniform(0.06, 0.085), d.uniform(0.024, 0.032)
+    d.box("body", (hx, hy, hz), (0, 0, hz), "plastic", color, solid_fraction=0.35)
+    lean = 0.3  # the front face leans back by this angle
+    face = axis_angle_quat((0, 1, 0), -lean)
+    depth = hz * math.tan(lean)
+    d.add(
+        "front",
+        "box",
+        (depth / 2, hy, hz / math.cos(lean)),
+        (hx + depth / 2 - 0.001, 0, hz),
+        "plastic",
+        color,
+        quat=face,
+        solid_fraction=0.35,
+    )
+    lit = d.choice(["red", "red", "green", "blue", "white"])
+    out = depth / 2 + 0.0006  # from the front's centre to the screen's, along its normal
+    d.add(
+        "screen",
+        "box",
+        (0.0004, hy * 0.82, hz * 0.62),
+        (hx + depth / 2 - 0.001 + out * math.cos(lean), 0, hz + out * math.sin(lean)),
+        "plastic",
+        "black",
+        quat=face,
+        visual_only=True,
+        texture=Texture("digits", (lit,)),
+    )
+    button = d.choice(["gray", "silver", "black" if color != "black" else "gray"])
+    for k, y in enumerate((-0.45, 0.45)):
+        d.box(
+            f"button_{k}",
+            (hx * 0.35, hy * 0.22, 0.003),
+            (0, y * hy, 2 * hz + 0.003),
+            "plastic",
+            button,
+        )
     return Traits((color,), "plastic", "cuboid")

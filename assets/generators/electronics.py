@@ -6,7 +6,7 @@ import math
 
 from ..design import Design, Traits
 from ..parts import axis_angle_quat
-from .registry import generator
+from .registry import generator, revised
 
 
 def _pill(d: Design, name: str, length, width, height, z0, material, color, **kw) -> None:
@@ -31,20 +31,68 @@ def beam(d: Design, name: str, p1, p2, half_w: float, half_t: float, material: s
     d.add(name, "box", half, center, material, color, quat=quat)
 
 
+MOUSE_COLORS = ["black", "gray", "white", "silver", "blue", "red"]
+
+
 @generator("mouse", size=(0.09, 0.13), synonyms=("computer mouse", "mouse"))
 def mouse(d: Design) -> Traits:
-    shell = d.choice(["black", "gray", "white", "silver", "blue", "red"])
+    shell = d.choice(MOUSE_COLORS)
     skirt = d.choice(["black", "gray", shell])
     lx, w, h = d.uniform(0.095, 0.125), d.uniform(0.055, 0.068), d.uniform(0.032, 0.042)
-    _pill(d, "skirt", lx, w, h / 2, 0.0, "plastic", skirt, solid_fraction=0.3)
-    d.ellipsoid(
-        "shell", (lx / 2, w / 2, h / 2), (0, 0, h / 2), "plastic", shell, solid_fraction=0.3
-    )
+    _mouse_body(d, shell, skirt, lx, w, h)
     x = lx * 0.22
     top = h / 2 + h / 2 * math.sqrt(1 - (2 * x / lx) ** 2)
     wheel = d.choice(["black", "gray"])
     d.rod("wheel", 0.0065, 0.006, (x, 0, top - 0.0025), "rubber", wheel, axis="y", visual_only=True)
     return Traits((shell, skirt), "plastic", "ellipsoid")
+
+
+@revised("mouse", 2)
+def mouse_2(d: Design) -> Traits:
+    """Revision 2: the two buttons show (a seam between them up to the wheel, and one
+    across behind them) and the wheel stands proud in the gap."""
+    shell = d.choice(MOUSE_COLORS)
+    skirt = d.choice(["black", "gray", shell])
+    lx, w, h = d.uniform(0.095, 0.125), d.uniform(0.055, 0.068), d.uniform(0.032, 0.042)
+    _mouse_body(d, shell, skirt, lx, w, h)
+    seam = "gray" if shell in ("black", "blue", "red") else "black"
+
+    def top(x: float) -> float:  # the shell's top along its middle
+        return h / 2 + h / 2 * math.sqrt(max(0.0, 1 - (2 * x / lx) ** 2))
+
+    back, front = -lx * 0.04, lx * 0.47
+    xs = [back + (front - back) * k / 4 for k in range(5)]
+    for k, (x0, x1) in enumerate(zip(xs[:-1], xs[1:], strict=True)):
+        d.segment(
+            f"seam_{k}",
+            "box",
+            (x0, 0, top(x0) + 0.0004),
+            (x1, 0, top(x1) + 0.0004),
+            (0.0007, 0.0005),
+            "plastic",
+            seam,
+            visual_only=True,
+        )
+    scale = math.sqrt(1 - (2 * back / lx) ** 2)
+    d.add(
+        "seam_across",
+        "ellipsoid",
+        (0.0007, w / 2 * scale + 0.0004, h / 2 * scale + 0.0004),
+        (back, 0, h / 2),
+        "plastic",
+        seam,
+        visual_only=True,
+    )
+    x = lx * 0.24
+    d.rod("wheel", 0.0072, 0.0055, (x, 0, top(x) - 0.0012), "rubber", "black", axis="y")
+    return Traits((shell, skirt), "plastic", "ellipsoid")
+
+
+def _mouse_body(d: Design, shell: str, skirt: str, lx: float, w: float, h: float) -> None:
+    _pill(d, "skirt", lx, w, h / 2, 0.0, "plastic", skirt, solid_fraction=0.3)
+    d.ellipsoid(
+        "shell", (lx / 2, w / 2, h / 2), (0, 0, h / 2), "plastic", shell, solid_fraction=0.3
+    )
 
 
 @generator(

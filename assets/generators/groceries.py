@@ -7,7 +7,7 @@ import math
 from ..design import Design, Traits
 from ..parts import X_TO_Z, axis_angle_quat, quat_mul
 from ..textures import Texture
-from .registry import generator
+from .registry import generator, revised
 
 WRAPPERS = ["red", "blue", "green", "yellow", "orange", "purple", "pink", "black", "white"]
 PRINTS = ["white", "yellow", "red", "silver", "blue"]
@@ -282,33 +282,14 @@ def bread(d: Design) -> Traits:
 
 
 # beverages -------------------------------------------------------------------------------
+JUICE_FRUITS = ["orange", "yellow", "red", "purple", "green"]
+
+
 @generator("juice", size=(0.09, 0.18), synonyms=("juice", "fruit juice"))
 def juice(d: Design) -> Traits:
-    fruit = d.choice(["orange", "yellow", "red", "purple", "green"])
+    fruit = d.choice(JUICE_FRUITS)
     if d.rng.random() < 0.5:
-        box = d.choice(WRAPPERS)
-        lx, ly, hz = d.uniform(0.04, 0.055), d.uniform(0.028, 0.038), d.uniform(0.075, 0.105)
-        band = Texture("label", ("white",))
-        d.box(
-            "carton",
-            (lx / 2, ly / 2, hz / 2),
-            (0, 0, hz / 2),
-            "paper",
-            box,
-            solid_fraction=1.4,
-            texture=band,
-        )
-        badge = Texture("badge", ("white", fruit), "fruit")
-        _print(d, "fruit_print", lx * 0.3, ly, hz * 0.45, fruit, texture=badge)
-        straw_color = d.choice(["white", "yellow", "pink", "blue"])
-        straw = d.uniform(0.035, 0.05)
-        d.upright(
-            "straw", 0.0025, straw, hz - 0.004, "plastic", straw_color, xy=(lx * 0.25, ly * 0.2)
-        )
-        tip = quat_mul(axis_angle_quat((0, 1, 0), 0.7), X_TO_Z)
-        top = (lx * 0.25 + 0.0032, ly * 0.2, hz - 0.004 + straw + 0.0038)
-        d.add("straw_tip", "cylinder", (0.0025, 0.007), top, "plastic", straw_color, quat=tip)
-        return Traits((box, fruit) if box != fruit else (box,), "paper", "cuboid")
+        return _juice_box(d, fruit)
     cap = d.choice(["white", "green", "orange", "blue", "black"])
     r, hz = d.uniform(0.028, 0.035), d.uniform(0.11, 0.15)
     body = hz * 0.7
@@ -328,6 +309,61 @@ def juice(d: Design) -> Traits:
     d.upright("neck", r * 0.6, hz - neck_z - 0.018, neck_z, "plastic", fruit)
     d.upright("cap", r * 0.68, 0.018, hz - 0.018, "plastic", cap)
     return Traits((fruit, cap), "plastic", "cylinder")
+
+
+@revised("juice", 2)
+def juice_2(d: Design) -> Traits:
+    """Revision 2: the bottle is a tall clear bottle showing the juice, with a slim neck,
+    a small cap and the fruit label (the first, squat with a wide cap, read as a pill
+    bottle); the carton is unchanged."""
+    fruit = d.choice(JUICE_FRUITS)
+    if d.rng.random() < 0.5:
+        return _juice_box(d, fruit)
+    cap = d.choice(["white", "green", "orange", "blue", "black"])
+    r, hz = d.uniform(0.026, 0.031), d.uniform(0.15, 0.18)
+    body = hz * 0.62
+    d.upright("bottle", r, body, 0.0, "plastic", fruit, solid_fraction=0.95)
+    d.upright(
+        "label",
+        r + 0.0012,
+        body * 0.55,
+        body * 0.25,
+        "paper",
+        d.choice(PRINTS[:3]),
+        visual_only=True,
+        texture=Texture("sticker", (fruit, fruit), "fruit"),
+    )
+    shoulder = hz * 0.16
+    d.ellipsoid("shoulder", (r, r, shoulder), (0, 0, body), "plastic", fruit, solid_fraction=0.95)
+    neck_z = body + shoulder * 0.8
+    d.upright("neck", r * 0.42, hz - neck_z - 0.014, neck_z, "plastic", "transparent")
+    d.upright("cap", r * 0.5, 0.014, hz - 0.014, "plastic", cap)
+    return Traits((fruit, cap), "plastic", "cylinder")
+
+
+def _juice_box(d: Design, fruit: str) -> Traits:
+    """A carton with its fruit and a straw."""
+    box = d.choice(WRAPPERS)
+    lx, ly, hz = d.uniform(0.04, 0.055), d.uniform(0.028, 0.038), d.uniform(0.075, 0.105)
+    band = Texture("label", ("white",))
+    d.box(
+        "carton",
+        (lx / 2, ly / 2, hz / 2),
+        (0, 0, hz / 2),
+        "paper",
+        box,
+        solid_fraction=1.4,
+        texture=band,
+    )
+    badge = Texture("badge", ("white", fruit), "fruit")
+    _print(d, "fruit_print", lx * 0.3, ly, hz * 0.45, fruit, texture=badge)
+    straw_color = d.choice(["white", "yellow", "pink", "blue"])
+    straw = d.uniform(0.035, 0.05)
+    d.upright("straw", 0.0025, straw, hz - 0.004, "plastic", straw_color, xy=(lx * 0.25, ly * 0.2))
+    tip = quat_mul(axis_angle_quat((0, 1, 0), 0.7), X_TO_Z)
+    top = (lx * 0.25 + 0.0032, ly * 0.2, hz - 0.004 + straw + 0.0038)
+    d.add("straw_tip", "cylinder", (0.0025, 0.007), top, "plastic", straw_color, quat=tip)
+    return Traits((box, fruit) if box != fruit else (box,), "paper", "cuboid")
 
 
 @generator("milk_carton", size=(0.1, 0.26), synonyms=("milk carton", "carton of milk", "milk"))
@@ -379,8 +415,7 @@ def candy(d: Design) -> Traits:
 
 @generator("chewing_gum", size=(0.06, 0.1), synonyms=("chewing gum", "gum", "pack of gum"))
 def chewing_gum(d: Design) -> Traits:
-    color = d.choice(WRAPPERS[:-1])
-    label = d.choice([c for c in PRINTS if c != color])
+    color, label = _gum_colors(d)
     if d.rng.random() < 0.5:
         lx, ly, hz = d.uniform(0.065, 0.078), d.uniform(0.019, 0.024), d.uniform(0.011, 0.015)
         d.box(
@@ -405,6 +440,38 @@ def chewing_gum(d: Design) -> Traits:
             label,
             visual_only=True,
         )
+    _gum_label(d, color, label, lx, ly, hz)
+    return Traits((color, label), "paper", "cuboid")
+
+
+@revised("chewing_gum", 2)
+def chewing_gum_2(d: Design) -> Traits:
+    """Revision 2: every pack is a sleeve of sticks, opened at one end with three foil
+    sticks pulled out to different lengths (the flat box of the first read as a mat)."""
+    color, label = _gum_colors(d)
+    lx, ly, hz = d.uniform(0.06, 0.075), d.uniform(0.02, 0.026), d.uniform(0.011, 0.014)
+    d.box("sleeve", (lx / 2, ly / 2, hz / 2), (0, 0, hz / 2), "paper", color, solid_fraction=0.8)
+    stick_t = (hz - 0.002) / 3
+    for k, out in enumerate(sorted((d.uniform(0.006, 0.012), d.uniform(0.016, 0.026)))[::-1]):
+        z = 0.001 + stick_t * (k + 0.5)
+        d.box(
+            f"stick_{k}",
+            (out / 2, ly / 2 - 0.0012, stick_t / 2 - 0.0002),
+            (lx / 2 + out / 2, 0, z),
+            "paper",
+            "silver",
+        )
+    _gum_label(d, color, label, lx, ly, hz)
+    return Traits((color, label), "paper", "cuboid")
+
+
+def _gum_colors(d: Design) -> tuple[str, str]:
+    color = d.choice(WRAPPERS[:-1])
+    return color, d.choice([c for c in PRINTS if c != color])
+
+
+def _gum_label(d: Design, color: str, label: str, lx: float, ly: float, hz: float) -> None:
+    """The band round the pack with its mint leaf."""
     mint = Texture("sticker", (color, "white" if label == "green" else "green"), "leaf")
     _band(
         d,
@@ -415,7 +482,6 @@ def chewing_gum(d: Design) -> Traits:
         x=-lx * 0.1,
         texture=mint,
     )
-    return Traits((color, label), "paper", "cuboid")
 
 
 @generator("biscuit", size=(0.045, 0.21), synonyms=("biscuit", "cookie"))

@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 
 from ..design import Design, Traits
-from .registry import generator
+from .registry import generator, revised
 
 GRIPS = ["red", "blue", "yellow", "black", "orange", "green"]
 
@@ -153,9 +153,12 @@ def mini_hammer(d: Design) -> Traits:
     return Traits((steel, handle_color), "metal", "T-shape")
 
 
+GLUE_GUN_COLORS = ["blue", "black", "gray", "green", "pink", "orange", "yellow"]
+
+
 @generator("glue_gun", size=(0.15, 0.28), synonyms=("glue gun", "hot glue gun"))
 def glue_gun(d: Design) -> Traits:
-    color = d.choice(["blue", "black", "gray", "green", "pink", "orange", "yellow"])
+    color = d.choice(GLUE_GUN_COLORS)
     trigger = d.choice(["black", "gray", color])
     body, bh, w = d.uniform(0.11, 0.15), d.uniform(0.034, 0.044), d.uniform(0.028, 0.034)
     grip_h, rake = d.uniform(0.065, 0.085), d.uniform(0.2, 0.35)
@@ -203,7 +206,56 @@ def glue_gun(d: Design) -> Traits:
         "plastic",
         trigger,
     )
-    x_stand = body / 2 - 0.02
+    _glue_gun_stand(d, body / 2 - 0.02, w, zb)
+    return Traits((color,) if trigger == color else (color, trigger), "plastic", "L-shape")
+
+
+@revised("glue_gun", 2)
+def glue_gun_2(d: Design) -> Traits:
+    """Revision 2: a round barrel tapering to a long metal nozzle, the white glue stick
+    fed in at the back, a rounded grip with its cord, the trigger in front of the grip in
+    a colour of its own (the first, square, read as a power drill)."""
+    color = d.choice(GLUE_GUN_COLORS)
+    trigger = d.choice(["black", "gray", "yellow" if color != "yellow" else "black"])
+    body, r = d.uniform(0.1, 0.13), d.uniform(0.018, 0.023)
+    grip_h, rake = d.uniform(0.06, 0.075), d.uniform(0.25, 0.4)
+    zc = grip_h + r
+    d.rod("barrel", r, body, (0, 0, zc), "plastic", color, capsule=True, solid_fraction=0.4)
+    d.rod("nose", r * 0.55, 0.022, (body / 2 + 0.006, 0, zc), "plastic", color)
+    d.rod("nozzle", 0.0055, 0.016, (body / 2 + 0.025, 0, zc), "metal", "silver")
+    d.segment(
+        "tip",
+        "cylinder",
+        (body / 2 + 0.033, 0, zc),
+        (body / 2 + 0.046, 0, zc - 0.005),
+        0.002,
+        "metal",
+        "silver",
+    )
+    stick = d.uniform(0.04, 0.08)
+    d.rod("glue_stick", 0.0056, stick, (-body / 2 - stick / 2 + 0.004, 0, zc), "plastic", "white")
+    x_top = -body * 0.18
+    x_butt = x_top - grip_h * math.tan(rake)
+    d.segment(
+        "grip", "capsule", (x_top, 0, zc - r * 0.5), (x_butt, 0, 0.012), 0.012, "plastic", color
+    )
+    d.box("butt", (0.016, 0.014, 0.006), (x_butt, 0, 0.006), "plastic", color)
+    d.rod("cord", 0.003, 0.03, (x_butt - 0.028, 0, 0.004), "rubber", "black")
+    d.segment(
+        "trigger",
+        "capsule",
+        (x_top + 0.032, 0, zc - r * 0.6),
+        (x_top + 0.024, 0, zc - r - 0.032),
+        0.0065,
+        "plastic",
+        trigger,
+    )
+    _glue_gun_stand(d, body / 2 - 0.018, 2 * r * 0.8, zc - r * 0.9)
+    return Traits((color,), "plastic", "L-shape")
+
+
+def _glue_gun_stand(d: Design, x_stand: float, w: float, zb: float) -> None:
+    """The folding wire stand under the nose, its foot across at the front."""
     for k, s in enumerate((-1, 1)):
         d.segment(
             f"stand_{k}",
@@ -215,4 +267,3 @@ def glue_gun(d: Design) -> Traits:
             "silver",
         )
     d.rod("stand_foot", 0.002, w * 1.3, (x_stand + 0.018, 0, 0.002), "metal", "silver", axis="y")
-    return Traits((color,) if trigger == color else (color, trigger), "plastic", "L-shape")

@@ -1,0 +1,115 @@
+"""Generator revisions: a revised category builds new assets, and every snapshot keeps
+regenerating the assets it was frozen with."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+
+from instructmove_ms.assets import snapshot as snap
+from instructmove_ms.assets.catalog import generate_instance, instance_uuid
+from instructmove_ms.assets.generators import LIBRARY, REVISIONS, generator_at, revised
+from instructmove_ms.assets.textures import image
+
+#: What revision 2 rebuilt, and a part (name, colour) that shows it.
+REVISED = {
+    "mouse": ("seam_across", None),
+    "alarm_clock": ("screen", "black"),
+    "glue_gun": ("cord", "black"),
+    "chewing_gum": ("stick_0", "silver"),
+    "juice": ("neck", "transparent"),  # a clear neck over the juice
+}
+
+
+def _shows(inst, category) -> bool:
+    name, color = REVISED[category]
+    return any(p.name == name and color in (None, p.color) for p in inst.parts)
+
+
+def test_the_revised_categories_are_the_ones_registered():
+    assert {c for c, builds in REVISIONS.items() if max(builds) > 1} == set(REVISED)
+    assert LIBRARY == 2
+
+
+@pytest.mark.parametrize("category", sorted(REVISED))
+def test_a_revision_is_a_new_asset_of_the_same_category(category):
+    old, new = generator_at(category, 1), generator_at(category, 2)
+    assert (old.revision, new.revision) == (1, 2)
+    assert (old.synonyms, old.size, old.container) == (new.synonyms, new.size, new.container)
+    for index in range(10):
+        a, b = generate_instance(category, index, 1), generate_instance(category, index, 2)
+        assert (
+            a.uuid == instance_uuid(category, index) != b.uuid == instance_uuid(category, index, 2)
+        )
+        assert a.parts != b.parts
+    # the defining part is there (in the variants that have it), and never before
+    assert any(_shows(generate_instance(category, i, 2), category) for i in range(10))
+    assert not any(_shows(generate_instance(category, i, 1), category) for i in range(10))
+
+
+def test_an_unrevised_category_is_the_same_asset_at_every_revision():
+    assert generate_instance("mug", 3, 1) == generate_instance("mug", 3, 2)
+
+
+def test_each_shipped_snapshot_rebuilds_at_its_own_revision():
+    """The snapshots frozen before the revision keep their mice; the newest has the new
+    ones, and everything else is shared."""
+    mice = {n: snap.load_snapshot(n).of_category("mouse")[0] for n in snap.SHIPPED}
+    assert mice["printed"].uuid == mice["default"].uuid == instance_uuid("mouse", 0)
+    assert mice["detailed"].uuid == instance_uuid("mouse", 0, 2)
+    printed, detailed = (snap.load_snapshot(n) for n in ("printed", "detailed"))
+    moved = {i.uuid for i in printed.instances} - {i.uuid for i in detailed.instances}
+    assert {printed[u].category for u in moved} == set(REVISED)
+    assert len(moved) == 10 * len(REVISED)
+    assert snap.frozen_as("printed") == snap.Frozen(textures=True, library=1)
+    assert snap.frozen_as("detailed") == snap.Frozen(textures=True, library=2)
+
+
+def test_a_snapshot_file_from_before_revisions_reads_as_revision_1(tmp_path, monkeypatch):
+    data = json.loads(snap.snapshot_path("printed").read_text())
+    assert "library" not in data  # written before revisions: its bytes never changed
+    monkeypatch.setattr(snap, "user_snapshot_dir", lambda: tmp_path)
+    entry = snap.entry_of(generate_instance("juice", 1, 1))
+    snap.write_snapshot(tmp_path / "mine.json", "mine", [entry], snap.Frozen(True, 1))
+    snap.load_snapshot.cache_clear()
+    try:
+        assert snap.load_snapshot("mine").instances[0] == generate_instance("juice", 1, 1)
+        bad = {
+            **entry,
+            "content_hash": snap.entry_of(generate_instance("juice", 1)).get("content_hash"),
+        }
+        snap.write_snapshot(tmp_path / "bad.json", "bad", [bad], snap.Frozen(True, 2))
+        with pytest.raises(ValueError, match="'bad' is stale: juice #1"):
+            snap.load_snapshot("bad")
+    finally:
+        snap.load_snapshot.cache_clear()
+
+
+def test_bad_revisions_are_refused():
+    with pytest.raises(ValueError, match="revision 3 is not in 1..2"):
+        generator_at("mouse", 3)
+    with pytest.raises(ValueError, match="numbered 2..2, got 1"):
+        revised("mouse", 1)
+    with pytest.raises(ValueError, match="two builds at revision 2"):
+        revised("mouse", 2)(lambda d: None)
+    with pytest.raises(ValueError, match="cannot revise 'teapot'"):
+        revised("teapot", 2)(lambda d: None)
+
+
+def test_the_digital_clock_shows_its_time_lit_on_a_dark_screen():
+    """The screen's image is mostly the screen's own black, with the segments lit in the
+    ink: the lit share sits between a tenth and a half of the image."""
+    clock = next(
+        inst
+        for inst in (generate_instance("alarm_clock", i) for i in range(20))
+        if any(p.name == "screen" for p in inst.parts)
+    )
+    screen = next(p for p in clock.parts if p.name == "screen")
+    assert screen.color == "black" and screen.texture.pattern == "digits"
+    img = image(screen.texture, screen.rgb, 3.0)[..., :3].astype(int)
+    lit = np.abs(img - img[0, 0]).sum(axis=-1) > 60
+    assert 0.05 < lit.mean() < 0.5
+    rows = np.flatnonzero(lit.any(axis=1))
+    assert rows.min() > 0.05 * img.shape[0] and rows.max() < 0.95 * img.shape[0]
