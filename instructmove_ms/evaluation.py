@@ -206,7 +206,7 @@ class _Runner:
             self._log_error([e for e, x in zip(batch, first, strict=True) if x is None], exc)
         rows = []
         for episode, once, end, film in zip(batch, first, last, frames, strict=True):
-            stages, catalog = u.task.stages, u.catalog
+            stages, catalog = u.task.stages, u.catalog_of(episode.spec)
             if end is not None:  # the latched stages of the last step, and success at the end
                 result, failed = score_episode(episode.spec, end, stages, catalog), None
             elif once is not None:  # succeeded before the policy failed: success at the end

@@ -165,7 +165,7 @@ class StoredEpisodes:
         spec = self.config.episodes[self.index].spec
         if not self.info:  # no step taken
             return EpisodeResult.failed(spec, u.task.stages).to_dict()
-        return score_episode(spec, self.info, u.task.stages, u.catalog).to_dict()
+        return score_episode(spec, self.info, u.task.stages, u.catalog_of(spec)).to_dict()
 
     def _observation(self, obs: dict) -> Observation:
         return Observation(

@@ -78,8 +78,9 @@ class PlanningScene:
         object ``target`` to ``destination`` (default: the episode's own goal)."""
         u = env.unwrapped
         spec = u.episode
+        catalog = u.catalog_of(spec)
         objects = tuple(
-            SceneObject(actor_name(k), u.catalog[obj.uuid], _geometry(u.objects[k]))
+            SceneObject(actor_name(k), catalog[obj.uuid], _geometry(u.objects[k]))
             for k, obj in enumerate(spec.objects)
         )
         scene = cls(
