@@ -20,6 +20,7 @@ REVISED = {
     "glue_gun": ("cord", "black"),
     "chewing_gum": ("stick_0", "silver"),
     "juice": ("neck", "transparent"),  # a clear neck over the juice
+    "mini_sculpture": ("nose", None),  # a bust
 }
 
 

@@ -370,6 +370,19 @@ def charging_cable(d: Design) -> Traits:
     synonyms=("figurine", "statuette", "mini sculpture", "small sculpture"),
 )
 def mini_sculpture(d: Design) -> Traits:
+    return _sculpture(d, "orb")
+
+
+@revised("mini_sculpture", 2)
+def mini_sculpture_2(d: Design) -> Traits:
+    """Revision 2: a bust (shoulders, neck, head with a nose) where the first had an orb on
+    a cup, which read as a crystal ball or a door knob; the other kinds are unchanged."""
+    return _sculpture(d, "bust")
+
+
+def _sculpture(d: Design, fifth: str) -> Traits:
+    """A small sculpture on a plinth: a figure, a cairn, a twisted stack, a ring, or the
+    ``fifth`` kind (an orb or a bust)."""
     material = d.choice(["stone", "stone", "ceramic", "metal", "wood"])
     color = d.choice(
         {
@@ -388,7 +401,7 @@ def mini_sculpture(d: Design) -> Traits:
     else:
         d.upright("plinth", pw / 2, ph, 0.0, plinth_mat, plinth)
     look = (material, color)
-    kind = d.choice(["figure", "cairn", "twist", "ring", "orb"])
+    kind = d.choice(["figure", "cairn", "twist", "ring", fifth])
     if kind == "figure":
         rz, rh = d.uniform(0.028, 0.038), d.uniform(0.009, 0.012)
         d.ellipsoid("torso", (rz * 0.42, rz * 0.3, rz), (0, 0, ph + rz), *look, solid_fraction=fill)
@@ -429,11 +442,27 @@ def mini_sculpture(d: Design) -> Traits:
                 solid_fraction=fill,
             )
         shape = "ring"
-    else:
+    elif kind == "orb":
         r = d.uniform(0.02, 0.028)
         d.upright("cup", r * 0.45, 0.004, ph, *look, solid_fraction=fill)
         d.sphere("orb", r, (0, 0, ph + 0.002 + r), *look, solid_fraction=fill)
         shape = "sphere"
+    else:  # a bust facing +x
+        k = d.uniform(0.9, 1.2)
+        d.ellipsoid(
+            "chest",
+            (0.011 * k, 0.028 * k, 0.015 * k),
+            (0, 0, ph + 0.014 * k),
+            *look,
+            solid_fraction=fill,
+        )
+        neck = ph + 0.025 * k
+        d.upright("neck", 0.0065 * k, 0.01 * k, neck, *look, solid_fraction=fill)
+        head = (0.0015 * k, 0, neck + 0.008 * k + 0.0145 * k)
+        d.ellipsoid("head", (0.012 * k, 0.0105 * k, 0.0145 * k), head, *look, solid_fraction=fill)
+        nose = (head[0] + 0.0115 * k, 0, head[2] - 0.001 * k)
+        d.ellipsoid("nose", (0.003 * k, 0.002 * k, 0.004 * k), nose, *look, solid_fraction=fill)
+        shape = "irregular"
     return Traits((color, plinth), material, shape)
 
 
