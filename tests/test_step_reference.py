@@ -5,7 +5,8 @@ cases were recorded again when its SRDF removed the self-contacts of its own lin
 change of the physics, not of the scoring), and the PickSpatial case when relations gained
 their direction cone (its seed's scene moved). The scoring made batched (one read of the
 scene, rotations by cross products, grasp checks that ask bounding boxes first) and the
-PiperX's base links ignoring the table left every case as recorded.
+PiperX's base links ignoring the table left every case as recorded. Every case was recorded
+again when the default snapshot moved to library revision 2 (seed 0's scenes moved).
 ``tests/tools/record_step_reference.py CASE`` records a case again.
 
 The reference was recorded on one machine and is checked on others, whose BLAS kernels,
