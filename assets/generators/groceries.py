@@ -320,7 +320,7 @@ def juice_2(d: Design) -> Traits:
     if d.rng.random() < 0.5:
         return _juice_box(d, fruit)
     cap = d.choice(["white", "green", "orange", "blue", "black"])
-    r, hz = d.uniform(0.026, 0.031), d.uniform(0.15, 0.18)
+    r, hz = d.uniform(0.025, 0.03), d.uniform(0.125, 0.15)
     body = hz * 0.62
     d.upright("bottle", r, body, 0.0, "plastic", fruit, solid_fraction=0.95)
     d.upright(
