@@ -6,7 +6,9 @@ depends on its scene alone. A new set version that keeps most scenes (the same s
 objects, poses, joints and goal) moves the first ``--episodes`` figures only through the
 scenes it drops and adds. This evaluates exactly those, on both versions, and prints for
 every family and robot how many scenes changed and the change in mean S and success that
-they make: the new figure is the old one plus this change.
+they make: the new figure is the old one plus this change. A scene names its objects by
+uuid, and a revised generator builds assets with new uuids, so a scene whose asset a library
+revision rebuilt counts as changed (two snapshots give one uuid the same content).
 """
 
 from __future__ import annotations
