@@ -50,7 +50,8 @@ def _outcome(env, flags, reason) -> dict:
     pose = u.agent.robot.pose.sp.inv() * target.pose.sp
     interior = goal_interior(PlanningScene.from_env(env))
     local = np.linalg.inv(interior.frame) @ np.append(pose.p, 1.0)
-    lo, hi = (np.asarray(b) for b in u.catalog[u.episode.objects[u.episode.target].uuid].bounds)
+    held = u.catalog_of(u.episode)[u.episode.objects[u.episode.target].uuid]
+    lo, hi = (np.asarray(b) for b in held.bounds)
     centre = np.linalg.inv(interior.frame) @ np.append((pose * sapien.Pose((lo + hi) / 2)).p, 1)
     fingers = [link for link in u.agent.robot.links if "finger" in link.name]
     touch = max(
@@ -204,7 +205,7 @@ def test_an_object_resting_upside_down_in_the_receptacle_counts_as_placed():
     env.reset(seed=1)
     u = env.unwrapped
     target = u.objects[u.episode.target]
-    lo, hi = u.catalog[u.episode.objects[u.episode.target].uuid].bounds
+    lo, hi = u.catalog_of(u.episode)[u.episode.objects[u.episode.target].uuid].bounds
     assert hi[2] - lo[2] > u.task.thresholds.place_height + 0.01  # the origin ends that high
     scene = PlanningScene.from_env(env)
     interior = goal_interior(scene)

@@ -111,6 +111,9 @@ class FakeVectorEnv:
         self.unwrapped, self.catalog, self.resets, self.steps = self, None, [], 0
         self.task = TASKS[TASK]
 
+    def catalog_of(self, spec):
+        return self.catalog
+
     def reset(self, seed, options):
         assert len(seed) == len(options["episode"]) == self.num_envs
         self.seeds, self.t = seed, 0

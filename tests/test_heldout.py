@@ -106,9 +106,9 @@ def test_a_contact_sheet_shows_each_episode_from_the_scene_camera(tmp_path):
 def test_the_former_set_version_stays_loadable(tmp_path, capsys):
     """Version 2, kept for results published on it, loads through the API and the CLI and
     still passes the verifier; it holds the former wording of the same seeds."""
-    catalog = load_snapshot()
     env_id, robot = "PlaceA2B-InstructMove", "franka"
     old = heldout.load_set(env_id, robot, "seen", version=2)
+    catalog = load_snapshot(old[0].snapshot)  # the plain snapshot it was published on
     new = heldout.load_set(env_id, robot, "seen")
     assert len(old) == len(new) == heldout.EPISODES_PER_SET
     assert sum(o.instruction != n.instruction for o, n in zip(old, new, strict=True)) > 50
