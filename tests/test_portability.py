@@ -53,10 +53,12 @@ def test_a_few_ulps_on_every_float_of_every_instance_keep_the_snapshot_valid(ulp
     """What another kernel does to a generator's output (62 of 1,140 instances differ in a
     last bit between OpenBLAS's Sandybridge and Haswell kernels) does not make it stale."""
     monkeypatch.setattr(
-        snap, "generate_instance", lambda cat, i: nudged_instance(generate_instance(cat, i), ulps)
+        snap,
+        "generate_instance",
+        lambda cat, i, library: nudged_instance(generate_instance(cat, i, library), ulps),
     )
-    data = _snapshot_data()
-    instances = snap._checked("default", data)  # raises for a stale instance
+    data = _snapshot_data()  # the newest snapshot: revised builds too
+    instances = snap._checked(snap.DEFAULT_SNAPSHOT, data)  # raises for a stale instance
     first = data["instances"][0]
     assert instances[0] != generate_instance(first["category"], first["index"]), "nudged"
 
@@ -80,8 +82,8 @@ def _moved(inst: Instance, **change) -> Instance:
 def test_a_generator_change_of_a_tenth_of_a_millimetre_or_a_colour_step_is_stale(
     change, monkeypatch
 ):
-    def generate(category: str, index: int) -> Instance:
-        inst = generate_instance(category, index)
+    def generate(category: str, index: int, library: int) -> Instance:
+        inst = generate_instance(category, index, library)
         return _moved(inst, **change) if (category, index) == ("mug", 5) else inst
 
     monkeypatch.setattr(snap, "generate_instance", generate)
