@@ -81,8 +81,12 @@ def write_snapshot(path: Path, name: str, entries: list[dict], frozen: Frozen = 
     """Write atomically (temporary file in the same folder, then rename), under the
     current identity scheme. The library revision is written only past 1, so files from
     before revisions keep their bytes."""
-    data = {"identity": IDENTITY_SCHEME, "name": name, "instances": entries}
-    data["textures"] = frozen.textures
+    data = {
+        "identity": IDENTITY_SCHEME,
+        "name": name,
+        "instances": entries,
+        "textures": frozen.textures,
+    }
     if frozen.library > 1:
         data["library"] = frozen.library
     return write_text(path, json.dumps(data, indent=1, sort_keys=True) + "\n")
@@ -142,11 +146,6 @@ def load_snapshot(name: str = DEFAULT_SNAPSHOT) -> Catalog:
 def frozen_as(name: str) -> Frozen:
     """How snapshot ``name`` builds its instances."""
     return _frozen(json.loads(_existing(name).read_text()))
-
-
-def wears_textures(name: str) -> bool:
-    """Whether the instances of snapshot ``name`` wear their textures."""
-    return frozen_as(name).textures
 
 
 def _frozen(data: dict) -> Frozen:
