@@ -1,11 +1,15 @@
-"""What decides the last bits of this machine's floating point: the BLAS kernel numpy runs
-and numpy's disabled CPU features (see the README's "The same benchmark on every machine")."""
+"""What decides the last bits of this machine's floating point: the CPU (its vendor's
+approximate reciprocals in PhysX's contact generation), the BLAS kernel numpy runs, numpy's
+disabled CPU features and the kernels torch dispatches to (see the README's "The same
+benchmark on every machine")."""
 
 from __future__ import annotations
 
 import ctypes
 import glob
 import os
+import platform
+from pathlib import Path
 
 
 def blas_kernel() -> str:
@@ -24,9 +28,40 @@ def blas_kernel() -> str:
     return "unknown"
 
 
+def cpu_model() -> str:
+    """The CPU: its vendor, family and model and its model name (``/proc/cpuinfo``), with
+    whether it has AVX-512, e.g. ``AuthenticAMD 25/17 AMD EPYC, AVX-512``."""
+    try:
+        first = Path("/proc/cpuinfo").read_text(encoding="utf-8").split("\n\n")[0]
+    except OSError:
+        return platform.processor() or platform.machine()
+    fields = {
+        key.strip(): value.strip()
+        for key, _, value in (line.partition(":") for line in first.splitlines())
+    }
+    flags = fields.get("flags", "").split()
+    wide = "AVX-512" if "avx512f" in flags else "AVX2" if "avx2" in flags else "no AVX2"
+    family = f"{fields.get('cpu family', '?')}/{fields.get('model', '?')}"
+    return f"{fields.get('vendor_id', '?')} {family} {fields.get('model name', '')}, {wide}"
+
+
+def torch_capability() -> str:
+    """The CPU kernels torch dispatches to (``ATEN_CPU_CAPABILITY`` forces one), or
+    ``no torch``."""
+    try:
+        import torch
+    except ImportError:
+        return "no torch"
+    return torch.backends.cpu.get_cpu_capability()
+
+
 def describe() -> str:
-    """numpy's version, its BLAS kernel and the CPU features turned off, in one line."""
+    """The CPU, numpy's version, its BLAS kernel, the CPU features turned off and torch's
+    dispatch, in one line."""
     import numpy as np
 
     disabled = os.environ.get("NPY_DISABLE_CPU_FEATURES", "") or "none"
-    return f"numpy {np.__version__}, BLAS kernel {blas_kernel()}, CPU features off: {disabled}"
+    return (
+        f"CPU {cpu_model()}; numpy {np.__version__}, BLAS kernel {blas_kernel()}, "
+        f"CPU features off: {disabled}; torch kernels {torch_capability()}"
+    )
