@@ -6,18 +6,20 @@ and every step's info of the actions replayed). Two things are checked apart:
 - **the plan**: the demo planned here from the same reset state. Its first motion is planned
   from the reset state alone, so on any machine it equals the recorded one within
   ``PLAN_ATOL``; later motions (a place, a relay) are planned from the state the physics left
-  and follow that state, so only their number and the demo's outcome are compared;
+  and follow that state, so only the demo's outcome (the generator keeps the same seed) is
+  compared;
 - **the physics**: the *recorded* actions replayed here. Until a robot link first touches an
   object, every step's flags are equal and distances and rewards within what a positional
   error of ``POSITION_ERROR`` in every body makes of them. From that step on, contact physics
   decides: PhysX's contact generation uses the CPU's approximate reciprocals (``rcpps``,
-  ``rsqrtps``), whose last bits differ between CPU vendors, and a grasp or a release carries
-  such a difference up to centimetres and moves a latched flag by a few steps. Measured from
-  an AMD EPYC (AVX-512) against this recording's Intel predecessor: the PlaceA2B/PiperX case
-  lands its object up to 1.55 cm apart and latches place and success 13 steps apart; nudging
-  every object by one float32 ULP on one machine does the same. So on another CPU only the
-  episode's score (the last step's latched flags, object indices, stage score and success
-  at the end) must be equal; on the recording CPU every step is compared as before contact.
+  ``rsqrtps``), whose last bits the x86 manuals leave to each vendor, and a grasp or a release
+  carries such a difference up to centimetres and moves a latched flag by a few steps.
+  Measured on an AMD EPYC (AVX-512) against the recording of an earlier CPU: the
+  PlaceA2B/PiperX case lands its object up to 1.55 cm apart and latches place and success 13
+  steps apart; nudging every object by one float32 ULP on one machine does the same. So on
+  another CPU only the episode's score (the last step's latched flags, object indices, stage
+  score and success at the end) must be equal; on the recording CPU every step is compared as
+  before contact.
 
 ``tests/tools/record_step_reference.py CASE`` records a case again (only when a change of the
 scene, the planner or the physics moves it, never to make a scoring change pass)."""
