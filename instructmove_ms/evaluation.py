@@ -61,6 +61,7 @@ from tqdm import tqdm
 from . import heldout
 from .executor import Tick, Workers, job_token, worker_state
 from .files import OutputLock, append_text, clean_stale, read_rows, write_text
+from .gpu_physics import check_gpu_physics, uses_gpu_physics
 from .guard import PolicyError, check_action, guarded
 from .heldout import ConfigEpisode, EvaluatorConfig
 from .metrics import EpisodeResult, score_episode
@@ -73,17 +74,16 @@ GPU_SIM_BACKENDS = ("auto", "gpu", "cuda", "physx_cuda")  # "auto" is the GPU fo
 
 def check_backend(num_envs: int, sim_backend: str, on_cluster: bool = False) -> None:
     """Fail early where ``num_envs`` sub-scenes cannot run: more than one needs the GPU
-    simulation backend and a CUDA device (here, unless the episodes run ``on_cluster``,
-    whose GPU workers Ray schedules)."""
+    simulation backend, and GPU physics needs PhysX's GPU library and a CUDA device (here,
+    unless the episodes run ``on_cluster``, whose GPU workers Ray schedules;
+    ``gpu_physics.GpuPhysicsUnavailable`` says which is missing)."""
     if num_envs < 1:
         raise ValueError(f"num_envs must be at least 1, got {num_envs}")
-    if num_envs == 1:
-        return
-    needs = f"num_envs={num_envs} needs the GPU sim backend (sim_backend='physx_cuda')"
-    if sim_backend.split(":")[0] not in GPU_SIM_BACKENDS:
+    if num_envs > 1 and sim_backend.split(":")[0] not in GPU_SIM_BACKENDS:
+        needs = f"num_envs={num_envs} needs the GPU sim backend (sim_backend='physx_cuda')"
         raise ValueError(f"{needs}; {sim_backend!r} simulates one env per process")
-    if not on_cluster and not torch.cuda.is_available():
-        raise ValueError(f"{needs}, which needs a CUDA device; none is available")
+    if not on_cluster and uses_gpu_physics(sim_backend, num_envs):
+        check_gpu_physics()
 
 
 def takes_seed(reset: Any) -> bool:

@@ -20,6 +20,7 @@ episode exactly (see ``InstructMoveEnv.reset``).
 from __future__ import annotations
 
 import dataclasses
+import hashlib
 import json
 from collections.abc import Iterator
 from dataclasses import dataclass
@@ -44,6 +45,8 @@ SET_VERSIONS = (2, 3, 4, 5)
 SET_VERSION = 5
 #: Seeds tried per kept episode at most (seeds whose scenes hide a candidate are skipped).
 SEEDS_PER_EPISODE = 5
+#: Each version's file of its set files' SHA-256 (``instructmove doctor`` checks them).
+CHECKSUMS = "checksums.json"
 
 
 def default_folder(version: int | None = None) -> Path:
@@ -64,6 +67,31 @@ def set_path(
 def write_set(path: Path, specs: list[EpisodeSpec]) -> Path:
     """Write ``specs`` as JSON lines, atomically."""
     return write_text(path, "".join(spec.to_json() + "\n" for spec in specs))
+
+
+def checksums(folder: Path) -> dict[str, str]:
+    """The SHA-256 of every set file under ``folder``, keyed by its path there."""
+    return {
+        path.relative_to(folder).as_posix(): hashlib.sha256(path.read_bytes()).hexdigest()
+        for path in sorted(folder.glob("*/*/*.jsonl"))
+    }
+
+
+def write_checksums(folder: Path) -> Path:
+    """Record the set files' checksums in ``folder``'s ``CHECKSUMS`` file (``episodes write``
+    does after writing sets)."""
+    return write_json(folder / CHECKSUMS, checksums(folder))
+
+
+def changed_sets(version: int | None = None) -> list[str]:
+    """The stored set files of ``version`` (None: the current one) that differ from the
+    checksums they shipped with, are missing or were added: empty where all are intact."""
+    folder = default_folder(version)
+    shipped = json.loads((folder / CHECKSUMS).read_text())
+    found = checksums(folder)
+    return sorted(
+        name for name in shipped.keys() | found.keys() if shipped.get(name) != found.get(name)
+    )
 
 
 def load_set(

@@ -32,6 +32,7 @@ from instructmove_ms.assets.sapien_builder import actor_builder
 from instructmove_ms.composer import compose, rephrase
 from instructmove_ms.episode import CONDITIONS, EpisodeSpec, actor_name
 from instructmove_ms.family import TaskSpec
+from instructmove_ms.gpu_physics import check_gpu_physics, uses_gpu_physics
 from instructmove_ms.perturbation import Context, parse_levels, perturb
 from instructmove_ms.splits import SPLITS
 from instructmove_ms.validation import check_choice, check_range
@@ -72,6 +73,8 @@ class InstructMoveEnv(BaseEnv):
     ):
         robot_uids = robot_uids or self.task.default_robot
         check_choice("robot_uids", robot_uids, self.task.supported_robots)
+        if uses_gpu_physics(kwargs.get("sim_backend", "auto"), kwargs.get("num_envs", 1)):
+            check_gpu_physics()  # before SAPIEN reaches for the network
         check_choice("split", split, SPLITS)
         check_choice("condition", condition, CONDITIONS)
         if num_distractors is None:

@@ -8,6 +8,7 @@ import sys
 from instructmove_ms.cli import (
     assets,
     demos,
+    doctor,
     envs,
     episodes,
     evaluate,
@@ -18,7 +19,7 @@ from instructmove_ms.cli import (
 )
 
 # in the order ``instructmove --help`` lists the verbs
-VERBS = (quickstart, envs, episodes, demos, evaluate, export, serve, perturb, assets)
+VERBS = (quickstart, doctor, envs, episodes, demos, evaluate, export, serve, perturb, assets)
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -34,6 +35,7 @@ def main(argv: list[str] | None = None) -> int:
     broken file, an unreachable policy server, an optional package not installed) prints one
     line and exits non-zero: 2 for bad input, 3 for a policy server that is gone (resume the
     run once it is back)."""
+    from instructmove_ms.gpu_physics import GpuPhysicsUnavailable
     from instructmove_ms.guard import ServerError
     from instructmove_ms.integrations import MissingExtra
 
@@ -43,7 +45,7 @@ def main(argv: list[str] | None = None) -> int:
     except BrokenPipeError:  # output piped into a reader that stopped (head, less)
         sys.stderr.close()
         return 0
-    except MissingExtra as exc:
+    except (MissingExtra, GpuPhysicsUnavailable) as exc:
         print(f"instructmove: error: {exc}", file=sys.stderr)
         return 2
     except ServerError as exc:

@@ -41,6 +41,7 @@ def _cmd_episodes_write(args: argparse.Namespace) -> int:
                 env.close()
                 path = heldout.write_set(heldout.set_path(env_id, robot, split, out), specs)
                 tqdm.write(f"{len(specs)} episodes -> {path}")
+    heldout.write_checksums(out or heldout.default_folder())
     return 0
 
 
