@@ -28,6 +28,7 @@ from importlib import resources
 from pathlib import Path
 
 from ..files import write_json, write_text
+from ..worker_log import mark
 from .catalog import Catalog, Instance, generate_instance
 from .generators import GENERATORS, LIBRARY
 from .identity import IDENTITY_SCHEME, content_hash, hash_for
@@ -140,7 +141,9 @@ def _load_entry(name: str, entry: dict, frozen: Frozen) -> Instance:
 @cache
 def load_snapshot(name: str = DEFAULT_SNAPSHOT) -> Catalog:
     """The catalog of snapshot ``name``; every instance rebuilt and hash-checked."""
-    return Catalog(name, _checked(name, json.loads(_existing(name).read_text())))
+    catalog = Catalog(name, _checked(name, json.loads(_existing(name).read_text())))
+    mark("library")
+    return catalog
 
 
 def frozen_as(name: str) -> Frozen:

@@ -13,12 +13,20 @@ without its inference), one episode per shard. Overhead: empty shards.
 
 Threads: each worker runs torch with its share of the cores (``executor``); the evaluation
 is also run as before that, every worker (and the one-process run) with torch's default
-pool, to show what sharing the cores gains."""
+pool, to show what sharing the cores gains.
+
+Worker profile (``--profile-only`` runs just this): each job once more on 2 workers with the
+worker log on (``instructmove_ms.worker_log``): per worker its start-up (interpreter up,
+imports until its first shard, the asset library, the first env), its busy time, and the
+straggler's tail (how long the first worker to finish waited for the last); then the job
+size from which W workers run at 80% efficiency, given the start-up F each pays and the cost c
+per unit once started: T_W = F + n c / W, so n >= (4 W - 5) F / c."""
 
 from __future__ import annotations
 
 import argparse
 import os
+import statistics
 import tempfile
 import time
 from collections.abc import Iterator
@@ -29,7 +37,7 @@ import ray
 import torch
 
 import instructmove_ms  # noqa: F401
-from instructmove_ms import executor
+from instructmove_ms import executor, worker_log
 from instructmove_ms.demos.generate import generate
 from instructmove_ms.evaluation import evaluate
 from instructmove_ms.executor import Workers
@@ -82,25 +90,82 @@ def _overhead_ms(workers: Workers, shards: int) -> float:
     return (seconds(2 * shards) - seconds(shards)) * 1000 / shards
 
 
+def _profile(job: str, measure, n: int, unit: str, workers: int = 2) -> None:
+    """``measure`` of ``n`` units on ``workers`` local workers with the worker log on: each
+    worker's start-up, busy time and the straggler's tail."""
+    with tempfile.TemporaryDirectory() as tmp:
+        log = Path(tmp) / "workers.jsonl"
+        os.environ[worker_log.VARIABLE] = str(log)
+        try:
+            measure(Workers(workers), n)
+            events = worker_log.read(str(log))
+        finally:
+            del os.environ[worker_log.VARIABLE]
+    pool = next(e["t"] for e in events if e["event"] == "pool")
+    pids = sorted({e["pid"] for e in events if e["event"] == "start"})
+    end = max(e["t"] for e in events if e["event"] == "shard_end")
+    finished, startups = [], []
+    for k, pid in enumerate(pids, 1):
+        mine = [e for e in events if e["pid"] == pid]
+        first = {e["event"]: e["t"] for e in reversed(mine)}  # each event's first time
+        starts = [e["t"] for e in mine if e["event"] == "shard_start"]
+        ends = [e["t"] for e in mine if e["event"] == "shard_end"]
+        busy = sum(b - a for a, b in zip(starts, ends, strict=True))
+        finished.append(max(ends))
+        steps = [("up", pool, first["start"]), ("imports", first["start"], starts[0])]
+        steps += [("library", starts[0], first.get("library", starts[0]))]
+        steps += [("first env", first.get("library", starts[0]), first.get("env", starts[0]))]
+        startups.append(first.get("env", starts[0]) - pool)
+        parts = ", ".join(f"{name} {b - a:.1f} s" for name, a, b in steps)
+        print(
+            f"{job:5s} worker {k}: start-up {startups[-1]:.1f} s ({parts}); busy {busy:.1f} s "
+            f"of {end - pool:.1f} s, {len(starts)} shards; done {end - max(ends):.1f} s before "
+            "the last"
+        )
+    print(
+        f"{job:5s} straggler tail: {end - min(finished):.1f} s (the first worker idle while "
+        f"the last finished); mean start-up {statistics.mean(startups):.1f} s per worker"
+    )
+
+
+def _scaling_size(job: str, fixed: float, marginal: float, unit: str) -> None:
+    """The job size from which W workers, each paying start-up ``fixed``, run at 80%
+    efficiency with ``marginal`` seconds per unit: n >= (4 W - 5) F / c."""
+    sizes = ", ".join(
+        f"{w} workers {max(1, round((4 * w - 5) * fixed / marginal))}" for w in (2, 8, 16)
+    )
+    print(f"{job:5s} {unit}s for 80% efficiency: {sizes}")
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__)
     parser.add_argument("--demos", type=int, default=12, help="demos of the short job")
     parser.add_argument("--episodes", type=int, default=3, help="episodes of the short job")
+    parser.add_argument("--profile-only", action="store_true", help="just the worker profile")
     args = parser.parse_args()
     cpus = os.cpu_count() or 1
-    ray.init(num_cpus=2, include_dashboard=False, log_to_driver=False, logging_level="ERROR")
-    setups = (("2 workers", Workers(2), 2), ("Ray, 2 CPUs", Workers(ray=""), 2))
-    for job, measure, n, unit, units in (
+    jobs = (
         ("demos", _demos_seconds, args.demos, "demo", DEMOS_WANTED),
         ("eval", _eval_seconds, args.episodes, "episode", SWEEP_EPISODES),
-    ):
+    )
+    one_worker = {}
+    for job, measure, n, unit, _ in jobs:
         short, long = measure(Workers(1), n), measure(Workers(1), 2 * n)
         marginal = (long - short) / n  # seconds per unit once started
         fixed = max(0.0, short - n * marginal)  # start-up: imports, env, renderer
+        one_worker[job] = long, marginal, fixed
         print(
             f"{job:5s} 1 worker   : {2 * n} {unit}s in {long:.0f} s ({2 * n * 3600 / long:.0f}"
             f"/h); {marginal:.1f} s per {unit} once started, {fixed:.0f} s start-up"
         )
+        _scaling_size(job, fixed, marginal, unit)
+        _profile(job, measure, 2 * n, unit)
+    if args.profile_only:
+        return
+    ray.init(num_cpus=2, include_dashboard=False, log_to_driver=False, logging_level="ERROR")
+    setups = (("2 workers", Workers(2), 2), ("Ray, 2 CPUs", Workers(ray=""), 2))
+    for job, measure, n, unit, units in jobs:
+        long, marginal, fixed = one_worker[job]
         efficiency = {}
         for name, workers, used in setups:
             seconds = measure(workers, 2 * n)

@@ -44,6 +44,8 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from .worker_log import mark
+
 Tick = Callable[[Any], None]
 ShardFn = Callable[[Any, Tick], Any]
 RAY_INSTALL = "pip install 'instructmove-ms[ray]'"
@@ -128,6 +130,7 @@ def worker_state(token: str, make: Callable[[], Any]) -> Any:
     if _STATE is None or _STATE[0] != token:
         release_state()
         _STATE = (token, make())
+        mark("env")
     return _STATE[1]
 
 
@@ -194,10 +197,19 @@ def set_worker_threads(threads: int) -> None:
     import torch
 
     torch.set_num_threads(threads)
+    mark("start")
+
+
+def _timed(fn: ShardFn, shard: Any, tick: Tick) -> Any:
+    mark("shard_start")
+    try:
+        return fn(shard, tick)
+    finally:
+        mark("shard_end")
 
 
 def _call(fn: ShardFn, shard: Any, sink: Any) -> Any:
-    return fn(shard, sink.put)
+    return _timed(fn, shard, sink.put)
 
 
 def _drain(source: Any, tick: Tick, get: Callable[[Any], Any]) -> None:
@@ -215,6 +227,7 @@ def _run_local(
     tries: Counter[int] = Counter()
     threads = share_of_cores(workers.processes)
     with ctx.Manager() as manager, children_threads(threads):
+        mark("pool")
         sink = manager.Queue()
         listener = threading.Thread(target=_drain, args=(sink, tick, lambda q: q.get()))
         listener.start()
@@ -251,7 +264,7 @@ def _run_local(
 # -- Ray ---------------------------------------------------------------------------------
 def _ray_shard(fn: ShardFn, shard: Any, sink: Any, threads: int) -> Any:
     set_worker_threads(threads)  # Ray sets OMP_NUM_THREADS to the task's CPUs itself
-    return fn(shard, sink.put_nowait)
+    return _timed(fn, shard, sink.put_nowait)
 
 
 def _visible(path: str) -> bool:

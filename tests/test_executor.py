@@ -184,3 +184,30 @@ def test_without_ray_local_workers_run_and_ray_says_how_to_install(tmp_path):
         assert run.returncode == 2
         assert "pip install 'instructmove-ms[ray]'" in run.stderr
     assert not (tmp_path / "d").exists() and not (tmp_path / "e").exists()
+
+
+def _stateful_shard(shard: int, tick) -> int:
+    """A shard that builds its process's job object once (``worker_state``)."""
+    from instructmove_ms.executor import worker_state
+
+    worker_state("log test", lambda: object())
+    return shard
+
+
+def test_the_worker_log_times_each_workers_start_env_and_shards(tmp_path, monkeypatch):
+    from instructmove_ms import worker_log
+
+    log = tmp_path / "workers.jsonl"
+    monkeypatch.setenv(worker_log.VARIABLE, str(log))
+    assert sorted(r for _, r in Workers(2).run(_stateful_shard, list(range(6)))) == list(range(6))
+    events = worker_log.read(str(log))
+    kinds = [e["event"] for e in events]
+    assert kinds.count("pool") == 1 and kinds.count("shard_start") == kinds.count("shard_end") == 6
+    workers = {e["pid"] for e in events if e["event"] == "start"}
+    assert workers and os.getpid() not in workers
+    pool = next(e["t"] for e in events if e["event"] == "pool")
+    for pid in {e["pid"] for e in events if e["event"] == "shard_start"}:
+        mine = [e for e in events if e["pid"] == pid]
+        times = [e["t"] for e in mine]
+        assert mine[0]["event"] == "start" and pool <= times[0] and times == sorted(times)
+        assert [e["event"] for e in mine].count("env") == 1, "its job object built once"
