@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import numpy as np
 import sapien
 from mani_skill.agents.base_agent import Keyframe
@@ -46,6 +48,11 @@ class FrankaInstructMove(InstructMoveAgent, Panda):
     """
 
     uid = "franka"
+    #: ManiSkill's Panda with lighter visual meshes (descriptions/franka/PROVENANCE.md):
+    #: the same physics, a third of the render.
+    urdf_path = str(
+        Path(__file__).resolve().parent / "descriptions" / "franka" / "panda_light.urdf"
+    )
     #: A top-down grasp stays well conditioned from 0.3 m in front of the base.
     workspace = Workspace(x=(0.3, 0.6), y=(-0.35, 0.35))
     scene_cameras = ("ext1_camera", "ext2_camera")

@@ -1,0 +1,124 @@
+"""Writes this folder's light Franka Panda description from ManiSkill's (``panda_v2.urdf``).
+
+    pip install trimesh fast-simplification   # the tools this script needs, not the package
+    python agents/descriptions/franka/generate.py
+
+The URDF is ManiSkill's with two changes only: its visual meshes are ours, each part of each
+link's mesh decimated to ``KEEP`` of its triangles (at least ``MIN_TRIANGLES``) with its own
+material, and its mesh paths point into this folder. Collision meshes are copied byte for
+byte, and joints, inertials and limits are ManiSkill's text, so physics is unchanged; only
+what the cameras show is lighter (a 224 x 224 picture cannot show 135k triangles). The meshes
+and PROVENANCE.md are committed; ``tests/test_franka_visuals.py`` holds them to the full
+meshes' pictures and to ManiSkill's URDF.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import re
+import shutil
+from pathlib import Path
+
+import fast_simplification
+import numpy as np
+import trimesh
+from mani_skill.agents.robots.panda.panda import Panda
+
+HERE = Path(__file__).resolve().parent
+SOURCE = Path(Panda.urdf_path)
+URDF = HERE / "panda_light.urdf"
+#: The fraction of each visual part's triangles kept, and the fewest any part keeps; the hand
+#: and fingers, which the wrist camera sees from a few centimetres, keep all of theirs.
+KEEP = 0.08
+MIN_TRIANGLES = 64
+WHOLE = ("hand.glb", "finger.glb")
+#: Edges sharper than this keep a crease (split normals); gentler ones are smooth-shaded.
+CREASE = np.deg2rad(30.0)
+MESH = re.compile(r'filename="franka_description/meshes/(visual|collision)/([^"]+)"')
+
+
+def decimated(part: trimesh.Trimesh) -> trimesh.Trimesh:
+    """``part`` with ``KEEP`` of its triangles, its material, and normals creased at edges
+    sharper than ``CREASE``."""
+    target = max(MIN_TRIANGLES, int(len(part.faces) * KEEP))
+    if target >= len(part.faces):
+        return part
+    welded = part.copy()  # the file repeats a vertex per corner: weld them to collapse edges
+    welded.merge_vertices(merge_tex=True, merge_norm=True)
+    points, faces = fast_simplification.simplify(
+        np.asarray(welded.vertices, np.float64), np.asarray(welded.faces), target_count=target
+    )
+    light = trimesh.graph.smooth_shade(trimesh.Trimesh(points, faces), angle=CREASE)
+    light.visual = trimesh.visual.TextureVisuals(material=part.visual.material)
+    return light
+
+
+def light_glb(source: Path, target: Path) -> tuple[int, int]:
+    """Write the decimated copy of visual mesh ``source`` (a copy of those in ``WHOLE``);
+    (triangles before, after)."""
+    if source.name in WHOLE:
+        shutil.copyfile(source, target)
+        count = sum(len(g.faces) for g in trimesh.load(source, force="scene").geometry.values())
+        return count, count
+    scene = trimesh.load(source, force="scene")
+    out = trimesh.Scene()
+    before = after = 0
+    for node in scene.graph.nodes_geometry:
+        transform, name = scene.graph[node]
+        part = scene.geometry[name]
+        light = decimated(part)
+        before, after = before + len(part.faces), after + len(light.faces)
+        out.add_geometry(light, node_name=node, geom_name=name, transform=transform)
+    target.write_bytes(out.export(file_type="glb"))
+    return before, after
+
+
+def main() -> None:
+    text = SOURCE.read_text()
+    meshes = sorted(set(MESH.findall(text)))
+    rows = []
+    for kind, name in meshes:
+        source = SOURCE.parent / "franka_description" / "meshes" / kind / name
+        target = HERE / "meshes" / kind / name
+        target.parent.mkdir(parents=True, exist_ok=True)
+        if kind == "collision":
+            shutil.copyfile(source, target)
+            continue
+        before, after = light_glb(source, target)
+        digest = hashlib.sha256(source.read_bytes()).hexdigest()[:16]
+        rows.append(f"| {name} | {before:,} | {after:,} | `{digest}` |")
+    URDF.write_text(MESH.sub(r'filename="meshes/\1/\2"', text))
+    totals = [int(r.split("|")[i].replace(",", "")) for r in rows for i in (2, 3)]
+    (HERE / "PROVENANCE.md").write_text(
+        PROVENANCE.format(
+            keep=KEEP,
+            floor=MIN_TRIANGLES,
+            rows="\n".join(rows),
+            before=f"{sum(totals[0::2]):,}",
+            after=f"{sum(totals[1::2]):,}",
+        )
+    )
+    print(f"wrote {URDF.name}: visual triangles {sum(totals[0::2]):,} -> {sum(totals[1::2]):,}")
+
+
+PROVENANCE = """# Light Franka Panda description: provenance
+
+Source: ManiSkill 3.0.1's `mani_skill/assets/robots/panda/panda_v2.urdf` and its
+`franka_description` meshes, which come from Franka Emika's `franka_ros` description,
+Apache License 2.0 (Copyright Franka Emika GmbH); these derived files keep that licence.
+
+Made by `generate.py` in this folder: the URDF text is ManiSkill's with mesh paths pointing
+here; collision meshes are copied byte for byte; each part of each visual mesh is decimated
+by quadric edge collapse (fast-simplification) to {keep:.0%} of its triangles, at least
+{floor}, keeping its material, with normals creased at edges sharper than 30 degrees; the
+hand and fingers (seen from a few centimetres by the wrist camera) keep their meshes whole.
+
+| visual mesh | triangles | light | source sha256 (16) |
+|---|---|---|---|
+{rows}
+| all | {before} | {after} | |
+"""
+
+
+if __name__ == "__main__":
+    main()
