@@ -7,6 +7,12 @@ observations and every sensor camera set to ``--width`` x ``--height`` (PickCube
 camera's capture and rgb read-out (ManiSkill's own sensor path), and prints milliseconds per
 camera and the ratio to PickCube-v1's. Medians of ``--repeats`` interleaved rounds of
 ``--frames``.
+
+``--profile`` says where a render's time goes instead, per robot and camera at ``--width`` x
+``--height``: the whole scene, then with the robot's render bodies hidden, the episode's
+objects hidden, the table and backdrop hidden, without shadows, and (the Franka) with
+ManiSkill's full visual meshes; then the three cameras together at 128, 224 and 320 pixels a
+side. Every figure is a ratio to the whole scene's time in the same round.
 """
 
 from __future__ import annotations
@@ -14,19 +20,48 @@ from __future__ import annotations
 import argparse
 import statistics
 import time
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
 
 import gymnasium as gym
+import sapien
+from mani_skill.agents.robots.panda.panda import Panda
 
 import instructmove_ms  # noqa: F401
+from instructmove_ms.agents.franka import FrankaInstructMove
 
 ENVS = (("PickCube-v1", None), ("PickCategory-InstructMove", "franka"))
 ENVS += (("PickCategory-InstructMove", "piperx"),)
 WARMUP = 5
 
 
-def per_camera_ms(env_id: str, robot: str | None, size: tuple[int, int], frames: int) -> dict:
+def _entities(objs) -> list:
+    return [o.entity if hasattr(o, "entity") else o for x in objs for o in x._objs]
+
+
+#: What ``--profile`` hides, by name: the entities of an env (unwrapped) that make each part.
+PARTS = {
+    "robot": lambda u: _entities(u.agent.robot.get_links()),
+    "objects": lambda u: _entities(u.objects),
+    "table and backdrop": lambda u: [
+        o
+        for name, a in u.scene.actors.items()
+        if name not in {x.name for x in u.objects}
+        for o in _entities([a])
+    ],
+}
+
+
+def per_camera_ms(
+    env_id: str,
+    robot: str | None,
+    size: tuple[int, int],
+    frames: int,
+    hide: str | None = None,
+    **kwargs,
+) -> dict:
     """Milliseconds per frame of each camera (its share of the scene's render update
-    included) and the update itself."""
+    included), with the render bodies of ``hide`` (a key of ``PARTS``) hidden."""
     extra = {"robot_uids": robot} if robot else {}
     env = gym.make(
         env_id,
@@ -34,9 +69,14 @@ def per_camera_ms(env_id: str, robot: str | None, size: tuple[int, int], frames:
         sensor_configs={"width": size[0], "height": size[1]},
         render_backend="cpu",
         **extra,
+        **kwargs,
     )
     env.reset(seed=0)
     scene = env.unwrapped.scene
+    for entity in PARTS[hide](env.unwrapped) if hide else ():
+        body = entity.find_component_by_type(sapien.render.RenderBodyComponent)
+        if body is not None:
+            body.disable()
     cameras = dict(scene.sensors)
     times = {name: [] for name in cameras} | {"update": []}
     for k in range(WARMUP + frames):
@@ -56,14 +96,74 @@ def per_camera_ms(env_id: str, robot: str | None, size: tuple[int, int], frames:
     return {name: (statistics.mean(t) + share) * 1000 for name, t in times.items()}
 
 
+@contextmanager
+def full_franka_meshes() -> Iterator[None]:
+    """Franka envs made inside load ManiSkill's own (full) visual meshes."""
+    light, FrankaInstructMove.urdf_path = FrankaInstructMove.urdf_path, Panda.urdf_path
+    try:
+        yield
+    finally:
+        FrankaInstructMove.urdf_path = light
+
+
+def _variants(robot: str, size: tuple[int, int], frames: int) -> dict[str, Callable[[], dict]]:
+    """What ``--profile`` times for ``robot``, by name: per-camera milliseconds."""
+
+    def timed(size=size, **variant) -> Callable[[], dict]:
+        return lambda: per_camera_ms("PickCategory-InstructMove", robot, size, frames, **variant)
+
+    out = {"whole scene": timed()}
+    out |= {f"{part} hidden": timed(hide=part) for part in PARTS}
+    out["no shadows"] = timed(enable_shadow=False)
+    if robot == "franka":
+        whole = out["whole scene"]
+
+        def full() -> dict:
+            with full_franka_meshes():
+                return whole()
+
+        out["full visual meshes"] = full
+    out |= {f"{side} x {side}": timed(size=(side, side)) for side in (128, 224, 320)}
+    return out
+
+
+def profile(size: tuple[int, int], frames: int, repeats: int) -> None:
+    """Where a render's time goes, per robot (see the module docstring): medians of
+    ``repeats`` interleaved rounds, each variant as a ratio to the whole scene."""
+    for robot in ("franka", "piperx"):
+        variants = _variants(robot, size, frames)
+        rounds: dict[str, list[dict]] = {name: [] for name in variants}
+        for _ in range(repeats):
+            for name, measure in variants.items():
+                rounds[name].append(measure())
+        ms = {
+            name: {c: statistics.median(r[c] for r in runs) for c in runs[0]}
+            for name, runs in rounds.items()
+        }
+        whole = ms.pop("whole scene")
+        total = sum(whole.values())
+        print(f"\n{robot} at {size[0]} x {size[1]}, rgb (ratios to the whole scene's time)")
+        print("| variant | " + " | ".join(whole) + " | all cameras |")
+        print("|---|" + "---|" * (len(whole) + 1))
+        cells = [f"{v:.1f} ms" for v in whole.values()]
+        print("| whole scene | " + " | ".join(cells) + f" | {total:.1f} ms |")
+        for name, cameras in ms.items():
+            cells = [f"{cameras[c] / whole[c]:.2f}x" for c in whole]
+            print(f"| {name} | " + " | ".join(cells) + f" | {sum(cameras.values()) / total:.2f}x |")
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__)
     parser.add_argument("--width", type=int, default=128)
     parser.add_argument("--height", type=int, default=128)
     parser.add_argument("--frames", type=int, default=20)
     parser.add_argument("--repeats", type=int, default=3)
+    parser.add_argument("--profile", action="store_true", help="where a render's time goes")
     args = parser.parse_args()
     size = (args.width, args.height)
+    if args.profile:
+        profile(size, args.frames, args.repeats)
+        return
     rounds: dict[str, list[dict]] = {robot or env_id: [] for env_id, robot in ENVS}
     for _ in range(args.repeats):  # interleaved: the renderer's first start-up is one round's
         for env_id, robot in ENVS:

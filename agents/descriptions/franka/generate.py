@@ -27,20 +27,21 @@ from mani_skill.agents.robots.panda.panda import Panda
 HERE = Path(__file__).resolve().parent
 SOURCE = Path(Panda.urdf_path)
 URDF = HERE / "panda_light.urdf"
-#: The fraction of each visual part's triangles kept, and the fewest any part keeps; the hand
-#: and fingers, which the wrist camera sees from a few centimetres, keep all of theirs.
+#: The fraction of each visual part's triangles kept (by mesh; the arm's links ``KEEP``), and
+#: the fewest any part keeps. The hand, which the wrist camera sees from a few centimetres,
+#: keeps more; the fingers, small already, keep all of theirs.
 KEEP = 0.08
+KEEP_OF = {"hand.glb": 0.3, "finger.glb": 1.0}
 MIN_TRIANGLES = 64
-WHOLE = ("hand.glb", "finger.glb")
 #: Edges sharper than this keep a crease (split normals); gentler ones are smooth-shaded.
 CREASE = np.deg2rad(30.0)
 MESH = re.compile(r'filename="franka_description/meshes/(visual|collision)/([^"]+)"')
 
 
-def decimated(part: trimesh.Trimesh) -> trimesh.Trimesh:
-    """``part`` with ``KEEP`` of its triangles, its material, and normals creased at edges
+def decimated(part: trimesh.Trimesh, keep: float) -> trimesh.Trimesh:
+    """``part`` with ``keep`` of its triangles, its material, and normals creased at edges
     sharper than ``CREASE``."""
-    target = max(MIN_TRIANGLES, int(len(part.faces) * KEEP))
+    target = max(MIN_TRIANGLES, int(len(part.faces) * keep))
     if target >= len(part.faces):
         return part
     welded = part.copy()  # the file repeats a vertex per corner: weld them to collapse edges
@@ -54,21 +55,23 @@ def decimated(part: trimesh.Trimesh) -> trimesh.Trimesh:
 
 
 def light_glb(source: Path, target: Path) -> tuple[int, int]:
-    """Write the decimated copy of visual mesh ``source`` (a copy of those in ``WHOLE``);
+    """Write the decimated copy of visual mesh ``source`` (a copy where it keeps all);
     (triangles before, after)."""
-    if source.name in WHOLE:
+    keep = KEEP_OF.get(source.name, KEEP)
+    if keep >= 1.0:
         shutil.copyfile(source, target)
         count = sum(len(g.faces) for g in trimesh.load(source, force="scene").geometry.values())
         return count, count
     scene = trimesh.load(source, force="scene")
     out = trimesh.Scene()
     before = after = 0
-    for node in scene.graph.nodes_geometry:
+    for k, node in enumerate(sorted(scene.graph.nodes_geometry, key=lambda n: scene.graph[n][1])):
         transform, name = scene.graph[node]
         part = scene.geometry[name]
-        light = decimated(part)
+        light = decimated(part, keep)
         before, after = before + len(part.faces), after + len(light.faces)
-        out.add_geometry(light, node_name=node, geom_name=name, transform=transform)
+        # node names of their own: the loader's carry random suffixes
+        out.add_geometry(light, node_name=f"{source.stem}_{k}", geom_name=name, transform=transform)
     target.write_bytes(out.export(file_type="glb"))
     return before, after
 
@@ -92,6 +95,7 @@ def main() -> None:
     (HERE / "PROVENANCE.md").write_text(
         PROVENANCE.format(
             keep=KEEP,
+            hand=KEEP_OF["hand.glb"],
             floor=MIN_TRIANGLES,
             rows="\n".join(rows),
             before=f"{sum(totals[0::2]):,}",
@@ -109,9 +113,9 @@ Apache License 2.0 (Copyright Franka Emika GmbH); these derived files keep that 
 
 Made by `generate.py` in this folder: the URDF text is ManiSkill's with mesh paths pointing
 here; collision meshes are copied byte for byte; each part of each visual mesh is decimated
-by quadric edge collapse (fast-simplification) to {keep:.0%} of its triangles, at least
-{floor}, keeping its material, with normals creased at edges sharper than 30 degrees; the
-hand and fingers (seen from a few centimetres by the wrist camera) keep their meshes whole.
+by quadric edge collapse (fast-simplification) to {keep:.0%} of its triangles (the hand, seen
+from a few centimetres by the wrist camera, to {hand:.0%}; the fingers are copied whole), at
+least {floor}, keeping its material, with normals creased at edges sharper than 30 degrees.
 
 | visual mesh | triangles | light | source sha256 (16) |
 |---|---|---|---|
