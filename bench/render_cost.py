@@ -9,8 +9,8 @@ camera and the ratio to PickCube-v1's. Medians of ``--repeats`` interleaved roun
 ``--frames``.
 
 ``--profile`` says where a render's time goes instead, per robot and camera at ``--width`` x
-``--height``: the whole scene, then with the robot's render bodies hidden, the episode's
-objects hidden, the table and backdrop hidden, without shadows, and (the Franka) with
+``--height``: the whole scene, then with the robot's render bodies removed (disabled), the
+episode's objects removed, the table and floor removed, without shadows, and (the Franka) with
 ManiSkill's full visual meshes; then the three cameras together at 128, 224 and 320 pixels a
 side. Every figure is a ratio to the whole scene's time in the same round.
 """
@@ -43,7 +43,7 @@ def _entities(objs) -> list:
 PARTS = {
     "robot": lambda u: _entities(u.agent.robot.get_links()),
     "objects": lambda u: _entities(u.objects),
-    "table and backdrop": lambda u: [
+    "table and floor": lambda u: [
         o
         for name, a in u.scene.actors.items()
         if name not in {x.name for x in u.objects}
@@ -61,7 +61,7 @@ def per_camera_ms(
     **kwargs,
 ) -> dict:
     """Milliseconds per frame of each camera (its share of the scene's render update
-    included), with the render bodies of ``hide`` (a key of ``PARTS``) hidden."""
+    included), with the render bodies of ``hide`` (a key of ``PARTS``) removed."""
     extra = {"robot_uids": robot} if robot else {}
     env = gym.make(
         env_id,
@@ -113,7 +113,7 @@ def _variants(robot: str, size: tuple[int, int], frames: int) -> dict[str, Calla
         return lambda: per_camera_ms("PickCategory-InstructMove", robot, size, frames, **variant)
 
     out = {"whole scene": timed()}
-    out |= {f"{part} hidden": timed(hide=part) for part in PARTS}
+    out |= {f"{part} removed": timed(hide=part) for part in PARTS}
     out["no shadows"] = timed(enable_shadow=False)
     if robot == "franka":
         whole = out["whole scene"]
