@@ -90,9 +90,9 @@ def _overhead_ms(workers: Workers, shards: int) -> float:
     return (seconds(2 * shards) - seconds(shards)) * 1000 / shards
 
 
-def _profile(job: str, measure, n: int, unit: str, workers: int = 2) -> None:
-    """``measure`` of ``n`` units on ``workers`` local workers with the worker log on: each
-    worker's start-up, busy time and the straggler's tail."""
+def _profile(job: str, measure, n: int, workers: int = 2) -> float:
+    """``measure`` of ``n`` units on ``workers`` local workers with the worker log on: prints
+    each worker's start-up, busy time and the straggler's tail; returns the mean start-up."""
     with tempfile.TemporaryDirectory() as tmp:
         log = Path(tmp) / "workers.jsonl"
         os.environ[worker_log.VARIABLE] = str(log)
@@ -126,11 +126,13 @@ def _profile(job: str, measure, n: int, unit: str, workers: int = 2) -> None:
         f"{job:5s} straggler tail: {end - min(finished):.1f} s (the first worker idle while "
         f"the last finished); mean start-up {statistics.mean(startups):.1f} s per worker"
     )
+    return statistics.mean(startups)
 
 
 def _scaling_size(job: str, fixed: float, marginal: float, unit: str) -> None:
-    """The job size from which W workers, each paying start-up ``fixed``, run at 80%
-    efficiency with ``marginal`` seconds per unit: n >= (4 W - 5) F / c."""
+    """The job size from which W spawned workers, each paying start-up ``fixed`` (measured
+    by the worker log), run at 80% efficiency with ``marginal`` seconds per unit:
+    n >= (4 W - 5) F / c."""
     sizes = ", ".join(
         f"{w} workers {max(1, round((4 * w - 5) * fixed / marginal))}" for w in (2, 8, 16)
     )
@@ -158,8 +160,7 @@ def main() -> None:
             f"{job:5s} 1 worker   : {2 * n} {unit}s in {long:.0f} s ({2 * n * 3600 / long:.0f}"
             f"/h); {marginal:.1f} s per {unit} once started, {fixed:.0f} s start-up"
         )
-        _scaling_size(job, fixed, marginal, unit)
-        _profile(job, measure, 2 * n, unit)
+        _scaling_size(job, _profile(job, measure, 2 * n), marginal, unit)
     if args.profile_only:
         return
     ray.init(num_cpus=2, include_dashboard=False, log_to_driver=False, logging_level="ERROR")

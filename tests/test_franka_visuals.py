@@ -88,6 +88,20 @@ def test_the_light_description_is_maniskills_but_for_its_visual_meshes():
     for name in collision:
         source = theirs.parent / "franka_description" / "meshes" / "collision" / name
         assert (ours.parent / "meshes" / "collision" / name).read_bytes() == source.read_bytes()
+    srdf = ours.with_suffix(".srdf").read_bytes()  # the loader reads it beside the URDF
+    assert srdf == theirs.with_suffix(".srdf").read_bytes()
+
+
+def test_the_light_description_moves_as_the_full_one(monkeypatch):
+    """The recorded Franka demo's actions replay to the same bits with either description."""
+    from test_step_reference import replayed
+
+    case = "PickCategory-InstructMove/franka"
+    runs = []
+    for urdf in (Panda.urdf_path, FrankaInstructMove.urdf_path):
+        monkeypatch.setattr(FrankaInstructMove, "urdf_path", urdf)
+        runs.append(replayed(case, CASE["seed"], np.asarray(CASE["actions"]), CASE["steps"]))
+    assert runs[0] == runs[1]
 
 
 @pytest.fixture(scope="module")

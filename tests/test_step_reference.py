@@ -89,19 +89,24 @@ def planned(case: str, folder: Path) -> tuple[int, np.ndarray]:
     return episode["reset_kwargs"]["seed"], actions
 
 
-def replayed(case: str, seed: int, actions: np.ndarray, keys) -> dict:
-    """``actions`` replayed in a fresh env of ``case`` reset to ``seed``: every step's
-    ``keys`` of info (and ``reward``) and the first step after which a robot link touches one
-    of the episode's objects (None: never)."""
+def case_env(case: str, **kwargs) -> gym.Env:
+    """A state env of ``case`` ("<env id>/<robot>") taking ``pd_joint_pos`` actions."""
     task, robot = case.split("/")
-    env = gym.make(
+    return gym.make(
         task,
         robot_uids=robot,
         obs_mode="state",
         control_mode="pd_joint_pos",
-        reward_mode="dense",
         render_backend="none",
+        **kwargs,
     )
+
+
+def replayed(case: str, seed: int, actions: np.ndarray, keys) -> dict:
+    """``actions`` replayed in a fresh env of ``case`` reset to ``seed``: every step's
+    ``keys`` of info (and ``reward``) and the first step after which a robot link touches one
+    of the episode's objects (None: never)."""
+    env = case_env(case, reward_mode="dense")
     env.reset(seed=seed)
     objects = {obj.name for obj in env.unwrapped.objects}
     seen: dict[str, list] = {key: [] for key in keys}

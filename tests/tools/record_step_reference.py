@@ -14,13 +14,18 @@ import sys
 import tempfile
 from pathlib import Path
 
-import gymnasium as gym
 import numpy as np
 import torch
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from test_step_reference import RECORDING, REFERENCE, planned, replayed  # noqa: E402
+from test_step_reference import (  # noqa: E402
+    RECORDING,
+    REFERENCE,
+    case_env,
+    planned,
+    replayed,
+)
 
 import instructmove_ms  # noqa: E402,F401
 from instructmove_ms.demos.script import MotionScript  # noqa: E402
@@ -40,14 +45,7 @@ KEYS = {
 def motions(case: str, seed: int, actions: np.ndarray) -> list[int]:
     """The lengths of the motions the episode's ``MotionScript`` plays in a fresh env (the
     first grasp plan), checked to be ``actions``."""
-    task, robot = case.split("/")
-    env = gym.make(
-        task,
-        robot_uids=robot,
-        obs_mode="state",
-        control_mode="pd_joint_pos",
-        render_backend="none",
-    )
+    env = case_env(case)
     env.reset(seed=seed)
     script, lengths, played = MotionScript(PlanningScene.from_env(env)), [], []
     while steps_left(env) > 0 and (motion := script.next(env)) is not None:

@@ -6,9 +6,10 @@
 The URDF is ManiSkill's with two changes only: its visual meshes are ours, each part of each
 link's mesh decimated to ``KEEP`` of its triangles (at least ``MIN_TRIANGLES``) with its own
 material, and its mesh paths point into this folder. Collision meshes are copied byte for
-byte, and joints, inertials and limits are ManiSkill's text, so physics is unchanged; only
-what the cameras show is lighter (a 224 x 224 picture cannot show 135k triangles). The meshes
-and PROVENANCE.md are committed; ``tests/test_franka_visuals.py`` holds them to the full
+byte, the SRDF beside it (the link pairs that never collide) is ManiSkill's, and joints,
+inertials and limits are ManiSkill's text, so physics is unchanged (the same bits); only what
+the cameras show is lighter (a 224 x 224 picture cannot show 135k triangles). The meshes and
+PROVENANCE.md are committed; ``tests/test_franka_visuals.py`` holds them to the full
 meshes' pictures and to ManiSkill's URDF.
 """
 
@@ -91,6 +92,8 @@ def main() -> None:
         digest = hashlib.sha256(source.read_bytes()).hexdigest()[:16]
         rows.append(f"| {name} | {before:,} | {after:,} | `{digest}` |")
     URDF.write_text(MESH.sub(r'filename="meshes/\1/\2"', text))
+    # the loader reads the SRDF beside a URDF (the link pairs that never collide)
+    shutil.copyfile(SOURCE.with_suffix(".srdf"), URDF.with_suffix(".srdf"))
     totals = [int(r.split("|")[i].replace(",", "")) for r in rows for i in (2, 3)]
     (HERE / "PROVENANCE.md").write_text(
         PROVENANCE.format(
@@ -112,7 +115,8 @@ Source: ManiSkill 3.0.1's `mani_skill/assets/robots/panda/panda_v2.urdf` and its
 Apache License 2.0 (Copyright Franka Emika GmbH); these derived files keep that licence.
 
 Made by `generate.py` in this folder: the URDF text is ManiSkill's with mesh paths pointing
-here; collision meshes are copied byte for byte; each part of each visual mesh is decimated
+here, and the SRDF beside it is ManiSkill's; collision meshes are copied byte for byte; each
+part of each visual mesh is decimated
 by quadric edge collapse (fast-simplification) to {keep:.0%} of its triangles (the hand, seen
 from a few centimetres by the wrist camera, to {hand:.0%}; the fingers are copied whole), at
 least {floor}, keeping its material, with normals creased at edges sharper than 30 degrees.
