@@ -1,9 +1,10 @@
 """``instructmove doctor``: what works on this machine, one line per finding.
 
-Each check returns a :class:`Finding`; a check that raises becomes a failed finding with the
-exception's text. A failed *core* finding (the packages, physics on the CPU, rendering, the
-asset library, the stored sets) makes the exit status non-zero; the rest (CUDA, GPU physics,
-optional extras) only report.
+Each check returns its status and one line (a ``Result``), which :func:`run_checks` names as a
+:class:`Finding`; a check that raises becomes a failed finding with the exception's text. A
+failed *core* finding (the packages, physics on the CPU, rendering, the asset library, the
+stored sets) makes the exit status non-zero; the rest (CUDA, GPU physics, optional extras)
+only report.
 """
 
 from __future__ import annotations
