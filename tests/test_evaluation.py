@@ -13,6 +13,7 @@ import torch
 from instructmove_ms import evaluation, heldout
 from instructmove_ms.cli import main
 from instructmove_ms.evaluation import evaluate, evaluate_config
+from instructmove_ms.gpu_physics import GpuPhysicsUnavailable
 from instructmove_ms.heldout import EvaluatorConfig
 from instructmove_ms.policies import RandomPolicy, ScriptedBlindPolicy, ScriptedOraclePolicy
 from instructmove_ms.tasks import TASKS
@@ -82,11 +83,19 @@ def test_visual_observations_reach_the_policy(tmp_path):
     assert policy.images and policy.images[0] == (1, 90, 160, 3)
 
 
-@pytest.mark.parametrize("backend", ["physx_cpu", "auto"])
-def test_several_envs_need_the_gpu_backend(tmp_path, backend):
-    if backend == "auto" and torch.cuda.is_available():
-        pytest.skip("auto picks the GPU backend where CUDA is available")
-    with pytest.raises(ValueError, match="needs the GPU sim backend"):
+@pytest.mark.parametrize(
+    ("backend", "error", "says"),
+    [
+        ("physx_cpu", ValueError, "needs the GPU sim backend"),
+        ("auto", GpuPhysicsUnavailable, "GPU physics needs SAPIEN's PhysX GPU library"),
+    ],
+)
+def test_several_envs_need_gpu_physics(tmp_path, monkeypatch, backend, error, says):
+    """Two sub-scenes need GPU physics: the CPU backend is refused, and ``auto`` (the GPU for
+    more than one env) stops before SAPIEN where its PhysX GPU library is missing (a home
+    folder without it)."""
+    monkeypatch.setenv("HOME", str(tmp_path / "home"))
+    with pytest.raises(error, match=says):
         evaluate(RandomPolicy(0), TASK, "seen", tmp_path, num_envs=2, sim_backend=backend)
     assert not tmp_path.joinpath("episodes.jsonl").exists(), "fails before running anything"
 
@@ -168,7 +177,7 @@ def test_vector_env_batches_episodes_and_latches_each_sub_scene(tmp_path, monkey
     config = heldout.evaluator_config(TASK, "franka", "seen", episodes=3)
     seeds = [e.seed for e in config.episodes]
     env = FakeVectorEnv(2, {seeds[0]: 2, seeds[2]: 1})
-    monkeypatch.setattr(torch.cuda, "is_available", lambda: True)
+    monkeypatch.setattr(evaluation, "check_gpu_physics", lambda: None)  # a GPU machine
     monkeypatch.setattr(evaluation.gym, "make", lambda *args, **kwargs: env)
     summary = evaluate_config(BatchPolicy(), config, tmp_path / "a", num_envs=2)
     assert env.resets == [seeds[:2], [seeds[2]] * 2], "two sub-scenes a reset, the last padded"
