@@ -6,8 +6,10 @@ physics (see tests/test_step_reference.py) reaches their rows only through a gra
 that ends otherwise. On the recording CPU every row is equal; on another, at most
 ``ALLOWED_ROWS`` of the slice's 32 rows may differ. Nudging every object by one float32 ULP at
 reset, a stand-in for another CPU's last bits, changed none of 160 rows (10 episodes per
-family; ``tests/tools/record_reference_rows.py --ulps 1 --episodes 10``): by the rule of
-three, at most 1.9% of rows change (95%), about 0.6 of 32, so one row is allowed.
+family; ``tests/tools/record_reference_rows.py --ulps 1 --episodes 10``), but between the
+earlier CPU and this one the quickstart's oracle rows changed in 1 of 20 (the PiperX's
+PickAttribute ``seen`` #1, a lift that held there and slips here; it is in this slice). At a
+change rate of 5%, more than 4 of 32 rows change with a chance of 3%.
 
 ``tests/tools/record_reference_rows.py`` records the slice again (when a set, the planner or
 the physics changes)."""
@@ -37,7 +39,7 @@ POLICIES = ("oracle", "blind")
 SCORE = ("stages", "success", "success_at_end", "stage_score", "choice")
 #: Rows of the slice (2 robots x 4 families x 2 policies x ``EPISODES``) another CPU may score
 #: otherwise (see above).
-ALLOWED_ROWS = 1
+ALLOWED_ROWS = 4
 
 
 def rows(policy: str, task: str, robot: str, episodes: int = EPISODES) -> list[dict]:
