@@ -61,7 +61,7 @@ from tqdm import tqdm
 from . import heldout
 from .executor import Tick, Workers, job_token, worker_state
 from .files import OutputLock, append_text, clean_stale, read_rows, write_text
-from .gpu_physics import check_gpu_physics, uses_gpu_physics
+from .gpu_physics import GPU_BACKENDS, check_gpu_physics, uses_gpu_physics
 from .guard import PolicyError, check_action, guarded
 from .heldout import ConfigEpisode, EvaluatorConfig
 from .metrics import EpisodeResult, score_episode
@@ -69,7 +69,7 @@ from .reports import write_reports
 from .video import VideoSettings, outcome_text, write_video
 
 STATE_MODES = ("state", "state_dict")  # observation modes that need no renderer
-GPU_SIM_BACKENDS = ("auto", "gpu", "cuda", "physx_cuda")  # "auto" is the GPU for num_envs > 1
+GPU_SIM_BACKENDS = ("auto", *GPU_BACKENDS)  # "auto" is the GPU for num_envs > 1
 
 
 def check_backend(num_envs: int, sim_backend: str, on_cluster: bool = False) -> None:
