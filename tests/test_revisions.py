@@ -14,7 +14,7 @@ from instructmove_ms.assets.generators import LIBRARY, REVISIONS, generator_at, 
 from instructmove_ms.assets.textures import image
 
 #: What revision 2 rebuilt, and a part (name, colour) that shows it.
-REVISED = {
+REVISED_2 = {
     "mouse": ("seam_across", None),
     "alarm_clock": ("screen", "black"),
     "glue_gun": ("cord", "black"),
@@ -22,32 +22,47 @@ REVISED = {
     "juice": ("neck", "transparent"),  # a clear neck over the juice
     "mini_sculpture": ("nose", None),  # a bust
 }
+#: What revision 3 rebuilt (categories fresh readers misnamed), and a part that shows it:
+#: bathroom, household and kitchen goods ...
+REVISED_3_BATH: dict[str, tuple[str, str | None]] = {}
+#: ... groceries and stationery ...
+REVISED_3_DESK: dict[str, tuple[str, str | None]] = {}
+#: ... electronics, bedroom, kitchenware, living-room, receptacles and tools.
+REVISED_3_ROOM: dict[str, tuple[str, str | None]] = {}
+#: Revision -> category -> the part that shows the revision.
+REVISED = {2: REVISED_2, 3: {**REVISED_3_BATH, **REVISED_3_DESK, **REVISED_3_ROOM}}
+#: (category, revision) of every revised build.
+BUILDS = sorted((c, r) for r, cats in REVISED.items() for c in cats)
 
 
-def _shows(inst, category) -> bool:
-    name, color = REVISED[category]
+def _shows(inst, category: str, revision: int) -> bool:
+    name, color = REVISED[revision][category]
     return any(p.name == name and color in (None, p.color) for p in inst.parts)
 
 
 def test_the_revised_categories_are_the_ones_registered():
-    assert {c for c, builds in REVISIONS.items() if max(builds) > 1} == set(REVISED)
-    assert LIBRARY == 2
+    registered = {(c, r) for c, builds in REVISIONS.items() for r in builds if r > 1}
+    assert registered == set(BUILDS)
+    assert LIBRARY == 3
 
 
-@pytest.mark.parametrize("category", sorted(REVISED))
-def test_a_revision_is_a_new_asset_of_the_same_category(category):
-    old, new = generator_at(category, 1), generator_at(category, 2)
-    assert (old.revision, new.revision) == (1, 2)
+@pytest.mark.parametrize(("category", "revision"), BUILDS)
+def test_a_revision_is_a_new_asset_of_the_same_category(category, revision):
+    old, new = generator_at(category, revision - 1), generator_at(category, revision)
+    assert new.revision == revision and old.revision < revision
     assert (old.synonyms, old.size, old.container) == (new.synonyms, new.size, new.container)
     for index in range(10):
-        a, b = generate_instance(category, index, 1), generate_instance(category, index, 2)
-        assert (
-            a.uuid == instance_uuid(category, index) != b.uuid == instance_uuid(category, index, 2)
-        )
+        a = generate_instance(category, index, revision - 1)
+        b = generate_instance(category, index, revision)
+        assert b.uuid == instance_uuid(category, index, revision) != a.uuid
         assert a.parts != b.parts
     # the defining part is there (in the variants that have it), and never before
-    assert any(_shows(generate_instance(category, i, 2), category) for i in range(10))
-    assert not any(_shows(generate_instance(category, i, 1), category) for i in range(10))
+    assert any(
+        _shows(generate_instance(category, i, revision), category, revision) for i in range(10)
+    )
+    assert not any(
+        _shows(generate_instance(category, i, revision - 1), category, revision) for i in range(10)
+    )
 
 
 def test_an_unrevised_category_is_the_same_asset_at_every_revision():
@@ -62,8 +77,8 @@ def test_each_shipped_snapshot_rebuilds_at_its_own_revision():
     assert mice["detailed"].uuid == instance_uuid("mouse", 0, 2)
     printed, detailed = (snap.load_snapshot(n) for n in ("printed", "detailed"))
     moved = {i.uuid for i in printed.instances} - {i.uuid for i in detailed.instances}
-    assert {printed[u].category for u in moved} == set(REVISED)
-    assert len(moved) == 10 * len(REVISED)
+    assert {printed[u].category for u in moved} == set(REVISED_2)
+    assert len(moved) == 10 * len(REVISED_2)
     assert snap.frozen_as("printed") == snap.Frozen(textures=True, library=1)
     assert snap.frozen_as("detailed") == snap.Frozen(textures=True, library=2)
 
@@ -89,9 +104,9 @@ def test_a_snapshot_file_from_before_revisions_reads_as_revision_1(tmp_path, mon
 
 
 def test_bad_revisions_are_refused():
-    with pytest.raises(ValueError, match="revision 3 is not in 1..2"):
-        generator_at("mouse", 3)
-    with pytest.raises(ValueError, match="numbered 2..2, got 1"):
+    with pytest.raises(ValueError, match="revision 4 is not in 1..3"):
+        generator_at("mouse", 4)
+    with pytest.raises(ValueError, match="numbered 2..3, got 1"):
         revised("mouse", 1)
     with pytest.raises(ValueError, match="two builds at revision 2"):
         revised("mouse", 2)(lambda d: None)

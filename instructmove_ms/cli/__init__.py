@@ -15,11 +15,12 @@ from instructmove_ms.cli import (
     export,
     perturb,
     quickstart,
+    readers,
     serve,
 )
 
 # in the order ``instructmove --help`` lists the verbs
-VERBS = (quickstart, doctor, envs, episodes, demos, evaluate, export, serve, perturb, assets)
+VERBS = (quickstart, doctor, envs, episodes, demos, evaluate, export, serve, perturb, assets, readers)
 
 
 def build_parser() -> argparse.ArgumentParser:
