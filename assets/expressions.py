@@ -1,10 +1,15 @@
 """Referring expressions from our own grammar, every phrase true of its instance.
 
-Phrases put the modifiers before a category noun, as people say them: the colour the camera
-shows of it (one of its stated colours, ``appearance.shown_color``, said as people say it:
-"clear", "gold") and its material where people name it ("the red mug", "the ceramic mug",
-"the metal bottle opener"). A packaged food's colour is its package's and is said as such
-("the juice in the green bottle"). Parts ("with a handle") and shape words are left out:
+Phrases name the object by a noun people say for its category (``nouns.yaml``, the most
+natural first: a choice among the category's nouns) and put the modifiers before it, in
+English order (colour, then material): the colour the camera shows of it (one of its
+stated colours, ``appearance.shown_color``, said as people say it: "clear", "gold") and
+its material where people name it ("the red mug", "the ceramic mug", "the metal bottle
+opener"). A food's own colour goes unsaid (it restates the kind: "yellow lemon"), unless
+the attribute cue needs it; a packaged food's colour is its package's and is said as such
+("the juice in the green bottle"). The colour of a pair is said of what comes in it ("pair
+of brown chopsticks"); no modifier repeats a word of its noun ("white white-out tape",
+"wooden rubber stamp"). Parts ("with a handle") and shape words are left out:
 in our families the noun already tells the candidates apart (the verifier's noun rule), and
 shape, like a plain material, is said only by the attribute cue, where it does. About 15
 go to the seen pool and 5 to the unseen pool, split deterministically by a hash of (uuid,
@@ -14,9 +19,15 @@ phrase).
 from __future__ import annotations
 
 import hashlib
+from functools import cache
+from pathlib import Path
+
+import yaml
 
 from .appearance import shown_color
 from .catalog import Instance
+
+NOUNS_FILE = Path(__file__).with_name("nouns.yaml")
 
 #: Material adjectives (what the attribute cue says); "organic" (fruit, food) has none.
 MATERIAL_ADJECTIVE = {
@@ -33,6 +44,8 @@ MATERIAL_ADJECTIVE = {
     "stone": "stone",
     "wicker": "wicker",
 }
+#: Material names and adjectives.
+MATERIAL_WORDS = frozenset(MATERIAL_ADJECTIVE) | frozenset(MATERIAL_ADJECTIVE.values())
 #: Shape words as a person says them before a noun.
 SHAPE_ADJECTIVE = {
     "sphere": "round",
@@ -73,6 +86,62 @@ PACKAGES = {
 PACKAGE_NOUNS = frozenset({"bottle", "box", "can", "carton", "pack", "packet", "tube", "bag"})
 SEEN, UNSEEN = 15, 5
 
+#: Nouns of stuff rather than things: a size or shape word goes on a noun that counts it
+#: ("the smallest tape roll", not "the smallest sticky tape").
+MASS_NOUNS = frozenset(
+    {
+        "bread",
+        "candy",
+        "chewing gum",
+        "gum",
+        "chocolate",
+        "dental floss",
+        "floss",
+        "garlic",
+        "juice",
+        "fruit juice",
+        "milk",
+        "scotch tape",
+        "sticky tape",
+        "adhesive tape",
+        "correction tape",
+        "toothpaste",
+        "shampoo",
+        "lotion",
+        "chips",
+        "potato chips",
+        "string cheese",
+        "face wash",
+        "hand sanitizer",
+        "sanitizer",
+    }
+)
+
+
+@cache
+def _said() -> dict[str, tuple[str, ...]]:
+    return {c: tuple(n) for c, n in yaml.safe_load(NOUNS_FILE.read_text()).items()}
+
+
+def said_nouns(inst: Instance) -> tuple[str, ...]:
+    """The nouns instructions say for ``inst``, the most natural first: its category's
+    choice (``nouns.yaml``) among its own nouns, or all of them for a category the file
+    does not list (an imported asset)."""
+    chosen = tuple(n for n in _said().get(inst.category, ()) if n in inst.nouns)
+    return chosen or inst.nouns
+
+
+def count_nouns(inst: Instance) -> tuple[str, ...]:
+    """``said_nouns`` that count the object rather than name its stuff (all of them where
+    none does)."""
+    said = said_nouns(inst)
+    return tuple(n for n in said if n not in MASS_NOUNS) or said
+
+
+def _words(text: str) -> set[str]:
+    return set(text.replace("-", " ").split())
+
+
 #: Colour words as people say them, where the annotation's word is not ("transparent").
 COLOR_WORDS = {"transparent": "clear", "golden": "gold"}
 
@@ -89,6 +158,18 @@ def said_material(inst: Instance) -> str | None:
     return MATERIAL_ADJECTIVE[inst.material]
 
 
+def modified(words: str, noun: str) -> str | None:
+    """``noun`` with ``words`` (adjectives) before it, put on what a pair holds ("pair of
+    brown chopsticks"); None where ``words`` repeat a word of ``noun`` or put a material
+    before a noun that names one ("wooden rubber stamp")."""
+    said, named = _words(words), _words(noun)
+    if said & named or (said & MATERIAL_WORDS and named & MATERIAL_WORDS):
+        return None
+    if noun.startswith("pair of "):
+        return f"pair of {words} {noun[len('pair of ') :]}"
+    return f"{words} {noun}"
+
+
 def colored(inst: Instance, noun: str) -> str | None:
     """``noun`` with the colour the camera shows of ``inst`` ("red mug"), said of a packaged
     food's package ("juice in the green bottle", "green pack of gum"); None where ``inst``
@@ -101,9 +182,17 @@ def colored(inst: Instance, noun: str) -> str | None:
         p.material == "organic" and p.color == shown for p in inst.parts
     )
     if own or PACKAGE_NOUNS & set(noun.split()):
-        return f"{word} {noun}"
+        return modified(word, noun)
     package = PACKAGES.get((inst.category, inst.material))
     return f"{noun} in the {word} {package}" if package else None
+
+
+def own_color_unsaid(inst: Instance) -> bool:
+    """Whether the colour ``inst`` shows is the food's own, which goes unsaid unprompted."""
+    shown = shown_color(inst)
+    return inst.domain == "food" and any(
+        p.material == "organic" and p.color == shown for p in inst.parts
+    )
 
 
 def all_phrases(inst: Instance) -> list[str]:
@@ -112,17 +201,17 @@ def all_phrases(inst: Instance) -> list[str]:
     both = " and ".join(color_word(c) for c in inst.colors)
     two_colored = len(inst.colors) == 2 and inst.domain != "food" and shown_color(inst)
     out: list[str] = []
-    for noun in inst.nouns:
+    for noun in said_nouns(inst):
         out.append(noun)
-        phrase = colored(inst, noun)
-        if phrase:
-            out.append(phrase)
-        if two_colored:
-            out.append(f"{both} {noun}")
-        if material and material not in noun.split():  # not "glass wine glass"
-            out.append(f"{material} {noun}")
-            if phrase and phrase.endswith(f" {noun}"):
-                out.append(f"{phrase[: -len(noun)]}{material} {noun}")
+        phrase = None if own_color_unsaid(inst) else colored(inst, noun)
+        options = [
+            phrase,
+            modified(both, noun) if two_colored else None,
+            modified(material, noun) if material else None,
+        ]
+        if material and phrase and phrase.endswith(f" {noun}") and " of " not in noun:
+            options.append(modified(f"{phrase[: -len(noun) - 1]} {material}", noun))
+        out += [p for p in options if p]
     return list(dict.fromkeys(out))
 
 
@@ -133,7 +222,10 @@ def _score(uuid: str, phrase: str) -> int:
 
 
 def expressions(inst: Instance) -> tuple[tuple[str, ...], tuple[str, ...]]:
-    """(seen, unseen) phrase pools: up to 15 and 5, the unseen ones never in the seen pool."""
+    """(seen, unseen) phrase pools: up to 15 and 5, the unseen ones never in the seen pool
+    (where there are two phrases or more)."""
     ranked = sorted(all_phrases(inst), key=lambda p: _score(inst.uuid, p))[: SEEN + UNSEEN]
+    if len(ranked) == 1:  # one way to say it: both pools say it
+        return tuple(ranked), tuple(ranked)
     n_unseen = max(1, round(len(ranked) * UNSEEN / (SEEN + UNSEEN)))
     return tuple(ranked[n_unseen:]), tuple(ranked[:n_unseen])

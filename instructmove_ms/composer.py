@@ -20,7 +20,7 @@ from .episode import CONDITIONS, EpisodeSpec, ObjectSpec
 from .family import Members, TaskSpec
 from .language import (
     noun,
-    preposition,
+    place_slots,
     pronoun,
     referring_expression,
     render,
@@ -83,9 +83,7 @@ def _instruction(
     slots = {"target": phrase, "it": pronoun(members[goal][0], phrase)}
     if dest >= 0:
         receptacle = members[dest][0]
-        slots.update(
-            destination=referring_expression(rng, receptacle, split), prep=preposition(receptacle)
-        )
+        slots.update(place_slots(receptacle, referring_expression(rng, receptacle, split)))
     return render(rng, templates or task.templates, **slots)
 
 
@@ -139,7 +137,7 @@ def _condition(
         slots = {"target": word, "it": pronoun(named, word)}
         if spec.goal_destination >= 0:
             receptacle = members[spec.goal_destination][0]
-            slots.update(destination=noun(rng, receptacle), prep=preposition(receptacle))
+            slots.update(place_slots(receptacle, noun(rng, receptacle)))
         text = render(rng, task.templates, **slots)
     return dataclasses.replace(
         spec, instruction=text, target=-1, goal_destination=-1, cue=cue, condition=condition

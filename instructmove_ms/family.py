@@ -144,7 +144,8 @@ class TaskSpec:
     stages: StageSchema
     roles: tuple[RoleSpec, ...]  # who is in the scene, with default counts and constraints
     count_limits: dict[str, tuple[int, int]]  # role -> allowed (min, max) count
-    #: slots: {target}, {it} (its pronoun); with a destination also {prep}, {destination}
+    #: slots: {target}, {it} (its pronoun); with a destination also {destination}, {prep}
+    #: (into/onto) and {at} (in/on)
     templates: tuple[str, ...]
     max_episode_steps: int = 300
     clearance: float = 0.05

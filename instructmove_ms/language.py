@@ -13,7 +13,10 @@ from .assets.expressions import (
     SHAPE_ADJECTIVE,
     color_word,
     colored,
+    count_nouns,
     expressions,
+    modified,
+    said_nouns,
 )
 from .splits import UNSEEN_SPLITS
 
@@ -51,18 +54,37 @@ def spaced(text: str) -> str:
 def pronoun(instance: Instance | None, phrase: str) -> str:
     """ "them" where ``phrase`` names ``instance`` by a plural noun (its longest noun in the
     phrase), else "it"."""
+    if " pair of " in spaced(phrase):  # "pair of brown chopsticks": one pair
+        return "it"
     named = [n for n in (instance.nouns if instance else ()) if f" {n} " in spaced(phrase)]
     return "them" if named and is_plural(max(named, key=len)) else "it"
 
 
+#: Longest object phrase (words) a template may put words after ("pick the red mug up",
+#: never "pick the tube of toothpaste to the right of the peeler up").
+SHORT_PHRASE = 3
+#: A template's words after the object phrase that are not a slot ("{target} up").
+POSTPOSED = re.compile(r"\{target\} (?!\{|and )\w")
+
+
+def fits(template: str, target: str) -> bool:
+    """Whether ``template`` may hold the object phrase ``target``: words after it (a
+    particle, "off the table") only follow a short phrase."""
+    return len(target.split()) <= SHORT_PHRASE or not POSTPOSED.search(template)
+
+
 def render(rng: np.random.Generator, templates: tuple[str, ...], **slots: str) -> str:
-    """Fill a randomly chosen template with ``slots`` (a template may leave some unused)."""
-    template = templates[int(rng.integers(len(templates)))]
+    """Fill a randomly chosen template that ``fits`` the target phrase with ``slots`` (a
+    template may leave some unused)."""
+    usable = tuple(t for t in templates if fits(t, slots.get("target", "")))
+    template = usable[int(rng.integers(len(usable)))]
     return template.format(**slots)
 
 
-def noun(rng: np.random.Generator, instance: Instance) -> str:
-    return instance.nouns[int(rng.integers(len(instance.nouns)))]
+def noun(rng: np.random.Generator, instance: Instance, counted: bool = False) -> str:
+    """A noun people say for ``instance`` (one that counts it if ``counted``)."""
+    nouns = count_nouns(instance) if counted else said_nouns(instance)
+    return nouns[int(rng.integers(len(nouns)))]
 
 
 def attribute_word(instance: Instance, attribute: str, direction: str = "") -> str | None:
@@ -88,7 +110,31 @@ def attribute_phrase(instance: Instance, attribute: str, noun: str, direction: s
         if phrase is None:
             raise ValueError(f"{instance.category} shows no colour it has a phrase for")
         return phrase
-    return f"{attribute_word(instance, attribute, direction)} {noun}"
+    word = attribute_word(instance, attribute, direction)
+    phrase = modified(word, noun)
+    if phrase is None:
+        raise ValueError(f"{instance.category}: {word!r} repeats a word of {noun!r}")
+    return phrase
+
+
+#: Attributes said of a thing that counts ("the smallest tape roll", never "the smallest
+#: sticky tape"): their phrases take a count noun.
+COUNTED = ("size", "shape")
+
+
+def attribute_phrases(instance: Instance, attribute: str, direction: str = "") -> list[str]:
+    """Every ``attribute_phrase`` of ``instance`` over the nouns people say for it (count
+    nouns for size and shape), leaving out those that repeat a word."""
+    nouns = count_nouns(instance) if attribute in COUNTED else said_nouns(instance)
+    out = []
+    for each in nouns:
+        try:
+            out.append(attribute_phrase(instance, attribute, each, direction))
+        except ValueError:
+            continue
+    if not out:
+        raise ValueError(f"{instance.category}: no {attribute} phrase over its nouns {nouns}")
+    return out
 
 
 def names(instance: Instance, text: str) -> bool:
@@ -112,11 +158,21 @@ def head(noun: str) -> str:
 FLAT_INTERIOR = 0.03
 
 
-def preposition(receptacle: Instance) -> str:
+def preposition(receptacle: Instance, short: bool = False) -> str:
     """'onto' for flat receptacles (plates, trays, boards, mats), 'into' for the others
-    (bins, boxes, bowls, cups)."""
+    (bins, boxes, bowls, cups); 'on' and 'in' if ``short`` (after "put")."""
     interior = receptacle.interior
-    return "onto" if interior is not None and interior.height < FLAT_INTERIOR else "into"
+    flat = interior is not None and interior.height < FLAT_INTERIOR
+    return ("on" if flat else "in") if short else ("onto" if flat else "into")
+
+
+def place_slots(receptacle: Instance, phrase: str) -> dict[str, str]:
+    """A place template's slots for ``receptacle`` said as ``phrase``."""
+    return {
+        "destination": phrase,
+        "prep": preposition(receptacle),
+        "at": preposition(receptacle, short=True),
+    }
 
 
 #: The grammar's synonyms of the templates' verbs (a template's first word, or the verb

@@ -20,7 +20,7 @@ from instructmove_ms.assets.catalog import Catalog, Instance
 from instructmove_ms.assets.expressions import colored
 from instructmove_ms.episode import EpisodeSpec
 from instructmove_ms.family import Cue, Members, TaskSpec
-from instructmove_ms.language import attribute_phrase, attribute_word, names, noun, spaced
+from instructmove_ms.language import attribute_phrases, attribute_word, names, spaced
 from instructmove_ms.sampler import (
     EACH_OTHER,
     EXTENT_RATIO,
@@ -93,8 +93,8 @@ class AttributeCue(Cue):
     def phrase(
         self, rng: np.random.Generator, cue: dict, members: Members, goal: int, split: str
     ) -> str:
-        inst = members[goal][0]
-        return attribute_phrase(inst, cue["attribute"], noun(rng, inst), cue.get("direction", ""))
+        options = attribute_phrases(members[goal][0], cue["attribute"], cue.get("direction", ""))
+        return options[int(rng.integers(len(options)))]
 
     def alternative(self, cue: dict, members: Members, candidates: Sequence[int], goal: int):
         """The same attribute where the goal's material or shape is unique among the

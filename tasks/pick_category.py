@@ -27,13 +27,16 @@ PICK_TEMPLATES = (
     "pick the {target} up",
     "grab the {target}",
     "lift the {target}",
-    "grasp the {target} and lift {it}",
-    "take the {target} off the table",
     "take the {target}",
     "please pick up the {target}",
-    "can you lift the {target}?",
-    "get the {target} and hold {it} up",
+    "can you pick up the {target}?",
+    "could you grab the {target}?",
+    "pick up the {target}, please",
+    "take the {target} off the table",
 )
+#: The pick templates that cannot read as "move it there" after a relation ("take the mug
+#: to the left of the bowl").
+RELATION_TEMPLATES = tuple(t for t in PICK_TEMPLATES if not t.startswith("take "))
 
 
 @dataclass(frozen=True)

@@ -24,7 +24,7 @@ from instructmove_ms.relations import (
 from instructmove_ms.sampler import Constraint, RoleSpec
 
 from .base import InstructMoveEnv
-from .pick_category import PICK_STAGES, PICK_TEMPLATES
+from .pick_category import PICK_STAGES, RELATION_TEMPLATES
 
 
 @dataclass(frozen=True)
@@ -111,7 +111,7 @@ PICK_SPATIAL = TaskSpec(
         ),
     ),
     count_limits={"distractor": (1, 1)},
-    templates=PICK_TEMPLATES,
+    templates=RELATION_TEMPLATES,
 )
 
 

@@ -58,14 +58,14 @@ PLACE_A2B = TaskSpec(
     ),
     count_limits={"distractor": (1, 2)},
     templates=(
-        "put the {target} {prep} the {destination}",
-        "place the {target} {prep} the {destination}",
+        "put the {target} {at} the {destination}",
+        "place the {target} {at} the {destination}",
         "move the {target} {prep} the {destination}",
-        "pick up the {target} and put {it} {prep} the {destination}",
-        "get the {target} {prep} the {destination}",
-        "take the {target} and place {it} {prep} the {destination}",
-        "can you put the {target} {prep} the {destination}?",
-        "please move the {target} {prep} the {destination}",
+        "pick up the {target} and put {it} {at} the {destination}",
+        "take the {target} and put {it} {at} the {destination}",
+        "can you put the {target} {at} the {destination}?",
+        "could you place the {target} {at} the {destination}?",
+        "please put the {target} {at} the {destination}",
     ),
     # Longer than the pick families' 300: a dual-arm rig may relay the object between its
     # arms to reach a receptacle on the far side.

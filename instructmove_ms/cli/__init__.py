@@ -20,7 +20,19 @@ from instructmove_ms.cli import (
 )
 
 # in the order ``instructmove --help`` lists the verbs
-VERBS = (quickstart, doctor, envs, episodes, demos, evaluate, export, serve, perturb, assets, readers)
+VERBS = (
+    quickstart,
+    doctor,
+    envs,
+    episodes,
+    demos,
+    evaluate,
+    export,
+    serve,
+    perturb,
+    assets,
+    readers,
+)
 
 
 def build_parser() -> argparse.ArgumentParser:

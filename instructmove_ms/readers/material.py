@@ -161,8 +161,9 @@ def in_scene(
 ) -> Path:
     """Every category of ``catalog`` (or of ``only``) that a stored set holds, in a random
     stored episode holding it, boxed in the scene camera that shows most of it (a wrist
-    camera where no scene camera shows it) at the policy's resolution, in a random order: pages ``in_scene_N.png``. The key names the categories
-    no stored episode holds (``absent``)."""
+    camera where no scene camera shows it) at the policy's resolution, in a random order:
+    pages ``in_scene_N.png``. The key names the categories no stored episode holds
+    (``absent``)."""
     rng = np.random.default_rng(seed)
     found = _occurrences(version)
     wanted = _categories(catalog, only)
