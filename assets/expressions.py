@@ -2,18 +2,18 @@
 
 Phrases name the object by a noun people say for its category (``nouns.yaml``, the most
 natural first: a choice among the category's nouns) and put the modifiers before it, in
-English order (colour, then material): the colour the camera shows of it (one of its
-stated colours, ``appearance.shown_color``, said as people say it: "clear", "gold") and
-its material where people name it ("the red mug", "the ceramic mug", "the metal bottle
+English order (colour, then material): the colour the camera shows of it (one of its stated
+colours, ``appearance.shown_color``, said as people say it: "clear", "gold") and its
+material where people name it ("the red mug", "the ceramic mug", "the metal bottle
 opener"). A food's own colour goes unsaid (it restates the kind: "yellow lemon"), unless
 the attribute cue needs it; a packaged food's colour is its package's and is said as such
-("the juice in the green bottle"). The colour of a pair is said of what comes in it ("pair
-of brown chopsticks"); no modifier repeats a word of its noun ("white white-out tape",
-"wooden rubber stamp"). Parts ("with a handle") and shape words are left out:
-in our families the noun already tells the candidates apart (the verifier's noun rule), and
-shape, like a plain material, is said only by the attribute cue, where it does. About 15
-go to the seen pool and 5 to the unseen pool, split deterministically by a hash of (uuid,
-phrase).
+("the green bottle of juice", "the purple-wrapped candy"). The colour of a pair is said of
+what comes in it ("pair of brown chopsticks"); no modifier repeats a word of its noun
+("white white-out tape", "wooden rubber stamp"). Parts ("with a handle") and shape words
+are left out: in our families the noun already tells the candidates apart (the verifier's
+noun rule), and shape, like a plain material, is said only by the attribute cue, where it
+does. About 15 go to the seen pool and 5 to the unseen pool, split deterministically by a
+hash of (uuid, phrase).
 """
 
 from __future__ import annotations
@@ -67,7 +67,8 @@ SHAPE_ADJECTIVE = {
 #: candidates apart (the attribute cue), and so does any material of a food.
 NOTABLE_MATERIALS = frozenset({"metal", "wood", "ceramic", "glass", "stone", "leather", "wicker"})
 #: What a packaged food comes in, by (category, material): a colour of it that no part of
-#: the food itself has is said of this ("the string cheese in the purple wrapper").
+#: the food itself has is said of this ("the green carton of juice", "the purple-wrapped
+#: string cheese").
 PACKAGES = {
     ("biscuit", "organic"): "packet",
     ("biscuit", "paper"): "packet",
@@ -86,36 +87,30 @@ PACKAGES = {
 PACKAGE_NOUNS = frozenset({"bottle", "box", "can", "carton", "pack", "packet", "tube", "bag"})
 SEEN, UNSEEN = 15, 5
 
-#: Nouns of stuff rather than things: a size or shape word goes on a noun that counts it
-#: ("the smallest tape roll", not "the smallest sticky tape").
-MASS_NOUNS = frozenset(
-    {
-        "bread",
-        "candy",
-        "chewing gum",
-        "gum",
-        "chocolate",
-        "dental floss",
-        "floss",
-        "garlic",
-        "juice",
-        "fruit juice",
-        "milk",
-        "scotch tape",
-        "sticky tape",
-        "adhesive tape",
-        "correction tape",
-        "toothpaste",
-        "shampoo",
-        "lotion",
-        "chips",
-        "potato chips",
-        "string cheese",
-        "face wash",
-        "hand sanitizer",
-        "sanitizer",
-    }
-)
+#: Nouns of stuff rather than things, with the measure that counts them ("the smallest
+#: loaf of bread", never "the smallest bread"); a packaged food is counted by its package.
+MEASURES = {
+    "bread": "loaf",
+    "candy": "piece",
+    "chocolate": "bar",
+    "chewing gum": "pack",
+    "gum": "pack",
+    "dental floss": "box",
+    "floss": "box",
+    "garlic": "head",
+    "juice": "bottle",
+    "milk": "carton",
+    "scotch tape": "roll",
+    "sticky tape": "roll",
+    "toothpaste": "tube",
+    "shampoo": "bottle",
+    "lotion": "bottle",
+    "face wash": "tube",
+    "hand sanitizer": "bottle",
+    "chips": "bag",
+    "potato chips": "bag",
+    "string cheese": "stick",
+}
 
 
 @cache
@@ -132,16 +127,25 @@ def said_nouns(inst: Instance) -> tuple[str, ...]:
 
 
 def count_nouns(inst: Instance) -> tuple[str, ...]:
-    """``said_nouns`` that count the object rather than name its stuff (all of them where
-    none does)."""
-    said = said_nouns(inst)
-    return tuple(n for n in said if n not in MASS_NOUNS) or said
+    """``said_nouns`` that count the object, a noun of stuff with its measure ("loaf of
+    bread", "carton of juice" for juice in a carton)."""
+    package = PACKAGES.get((inst.category, inst.material))
+    out = []
+    for noun in said_nouns(inst):
+        measure = MEASURES.get(noun)
+        if measure is None:
+            out.append(noun)
+        elif package != "wrapper":
+            out.append(f"{package or measure} of {noun}")
+    return tuple(dict.fromkeys(out)) or said_nouns(inst)
 
 
 def _words(text: str) -> set[str]:
     return set(text.replace("-", " ").split())
 
 
+#: Colours that already say "metal" ("silver metal bucket" says it twice).
+METAL_COLORS = frozenset({"silver", "golden"})
 #: Colour words as people say them, where the annotation's word is not ("transparent").
 COLOR_WORDS = {"transparent": "clear", "golden": "gold"}
 
@@ -172,8 +176,8 @@ def modified(words: str, noun: str) -> str | None:
 
 def colored(inst: Instance, noun: str) -> str | None:
     """``noun`` with the colour the camera shows of ``inst`` ("red mug"), said of a packaged
-    food's package ("juice in the green bottle", "green pack of gum"); None where ``inst``
-    shows no stated colour or its package has no word."""
+    food's package ("green bottle of juice", "green pack of gum", "purple-wrapped candy");
+    None where ``inst`` shows no stated colour or its package has no word."""
     shown = shown_color(inst)
     if shown is None:
         return None
@@ -184,7 +188,12 @@ def colored(inst: Instance, noun: str) -> str | None:
     if own or PACKAGE_NOUNS & set(noun.split()):
         return modified(word, noun)
     package = PACKAGES.get((inst.category, inst.material))
-    return f"{noun} in the {word} {package}" if package else None
+    if package is None:
+        return None
+    if package == "wrapper":
+        return f"{word}-wrapped {noun}"
+    contents = noun if noun in MEASURES or noun.endswith("s") else f"{noun}s"
+    return f"{word} {package} of {contents}"
 
 
 def own_color_unsaid(inst: Instance) -> bool:
@@ -199,7 +208,12 @@ def all_phrases(inst: Instance) -> list[str]:
     """Every phrase the grammar makes for ``inst`` (deduplicated, in a fixed order)."""
     material = said_material(inst)
     both = " and ".join(color_word(c) for c in inst.colors)
-    two_colored = len(inst.colors) == 2 and inst.domain != "food" and shown_color(inst)
+    two_colored = (
+        len(inst.colors) == 2
+        and inst.domain != "food"
+        and shown_color(inst)
+        and "transparent" not in inst.colors  # "red and clear" is not how people say it
+    )
     out: list[str] = []
     for noun in said_nouns(inst):
         out.append(noun)
@@ -209,7 +223,14 @@ def all_phrases(inst: Instance) -> list[str]:
             modified(both, noun) if two_colored else None,
             modified(material, noun) if material else None,
         ]
-        if material and phrase and phrase.endswith(f" {noun}") and " of " not in noun:
+        metallic = material == "metal" and shown_color(inst) in METAL_COLORS
+        if (
+            material
+            and phrase
+            and phrase.endswith(f" {noun}")
+            and " of " not in noun
+            and not metallic
+        ):
             options.append(modified(f"{phrase[: -len(noun) - 1]} {material}", noun))
         out += [p for p in options if p]
     return list(dict.fromkeys(out))

@@ -12,6 +12,7 @@ from instructmove_ms import heldout
 from instructmove_ms.assets import load_snapshot
 from instructmove_ms.assets.appearance import shown_color
 from instructmove_ms.assets.expressions import (
+    SHAPE_ADJECTIVE,
     all_phrases,
     color_word,
     colored,
@@ -130,8 +131,10 @@ def test_no_modifier_repeats_its_noun(words, noun, said):
 
 def test_size_and_shape_are_said_of_a_count_noun():
     tape = _instances("scotch_tape")[0]
-    assert set(count_nouns(tape)) == {"tape roll"}
-    assert attribute_phrases(tape, "size", "smaller") == ["smallest tape roll"]
+    assert set(count_nouns(tape)) == {"tape roll", "roll of scotch tape", "roll of sticky tape"}
+    assert "smallest tape roll" in attribute_phrases(tape, "size", "smaller")
+    bread = _instances("bread")[0]
+    assert attribute_phrases(bread, "shape") == [f"{SHAPE_ADJECTIVE[bread.shape]} loaf of bread"]
     assert len(attribute_phrases(tape, "material")) > 1
 
 

@@ -9,7 +9,15 @@ import pytest
 
 from instructmove_ms import heldout
 from instructmove_ms.assets import load_snapshot
-from instructmove_ms.assets.expressions import PACKAGES, all_phrases, colored, said_material
+from instructmove_ms.assets.expressions import (
+    PACKAGE_NOUNS,
+    PACKAGES,
+    all_phrases,
+    colored,
+    own_color_unsaid,
+    said_material,
+    said_nouns,
+)
 from instructmove_ms.phrasing import faults
 from instructmove_ms.splits import EVAL_SPLITS
 from instructmove_ms.tasks import TASKS
@@ -65,11 +73,25 @@ def test_a_package_colour_is_said_of_the_package():
     packaged = [
         i for i in catalog.instances if (i.category, i.material) in PACKAGES and colored(i, "x")
     ]
-    wrapped = [i for i in packaged if "in the" in colored(i, i.nouns[0])]
-    assert wrapped, "some foods show their package's colour"
-    for inst in wrapped:
-        shown = colored(inst, inst.nouns[0]).split()[-2]
-        assert not [p for p in all_phrases(inst) if p.startswith(f"{shown} {inst.nouns[0]}")]
+    held = [
+        i
+        for i in packaged
+        if " of " in colored(i, said_nouns(i)[0])
+        and not PACKAGE_NOUNS & set(said_nouns(i)[0].split())
+    ]
+    assert held, "some foods show their package's colour"
+    for inst in held:
+        noun = said_nouns(inst)[0]
+        shown = colored(inst, noun).split()[0]
+        package = PACKAGES[inst.category, inst.material]
+        assert colored(inst, noun).startswith(f"{shown} {package} of ")
+        assert not [p for p in all_phrases(inst) if p.startswith(f"{shown} {noun}")]
+    wrapped = [
+        i
+        for i in packaged
+        if PACKAGES[i.category, i.material] == "wrapper" and not own_color_unsaid(i)
+    ]
+    assert wrapped and all("-wrapped " in colored(i, "x") for i in wrapped)
     coke = next(i for i in catalog.instances if i.category == "canned_coke")
     assert colored(coke, "soda can") == "red soda can", "a noun naming the package takes it"
 

@@ -29,7 +29,7 @@ def _cmd_draw(args: argparse.Namespace) -> int:
     elif kind == "instructions":
         import instructmove_ms  # noqa: F401  (registration)
 
-        key = material.instructions(args.seed, out, args.n, args.set_version)
+        key = material.instructions(args.seed, out, args.n, args.set_version, args.source)
     else:
         import instructmove_ms  # noqa: F401  (registration)
 
@@ -71,6 +71,7 @@ KINDS = ("close-ups", "in-scene", "instructions", "episodes")
 
 def add_parsers(sub: argparse._SubParsersAction) -> None:
     from instructmove_ms.assets.snapshot import DEFAULT_SNAPSHOT
+    from instructmove_ms.readers import SOURCES
 
     group = _add_group(sub, "readers", "material for fresh readers and the scorer of answers")
     helps = {
@@ -96,6 +97,13 @@ def add_parsers(sub: argparse._SubParsersAction) -> None:
                 type=int,
                 default=200 if kind == "instructions" else 40,
                 help="how many (default: %(default)s)",
+            )
+        if kind == "instructions":
+            p.add_argument(
+                "--source",
+                choices=SOURCES,
+                default="both",
+                help="stored sets, training seeds, or half of each (default: %(default)s)",
             )
         p.set_defaults(func=_cmd_draw)
     p = group.add_parser("brief", help="print what a reader of KIND is told")

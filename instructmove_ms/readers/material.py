@@ -20,7 +20,7 @@ from ..episode import EpisodeSpec
 from ..files import write_json, write_text
 from ..heldout import SET_VERSION, load_set
 from ..splits import EVAL_SEED_BASE, EVAL_SPLITS
-from . import briefs
+from . import SOURCES, briefs
 from .pictures import boxed, cell_owners, numbered, ruled, write_pages, write_png
 
 #: Scene cameras, then the others, at the resolution policies are trained on.
@@ -245,13 +245,19 @@ def episodes(seed: int, out: Path, count: int = 40, version: int | None = None) 
     return _write_key(out, "episodes", seed, items, set_version=version or SET_VERSION)
 
 
-def instructions(seed: int, out: Path, count: int = 200, version: int | None = None) -> Path:
-    """``count`` instructions in a random order, half from random stored episodes of
-    ``version``, half from episodes of random training seeds (``instructions.txt``)."""
+def instructions(
+    seed: int, out: Path, count: int = 200, version: int | None = None, source: str = "both"
+) -> Path:
+    """``count`` instructions in a random order from ``source``: random stored episodes of
+    ``version``, episodes of random training seeds, or half of each
+    (``instructions.txt``)."""
     from ..tasks import TASKS
+    from ..validation import check_choice
 
+    check_choice("source", source, SOURCES)
     rng = np.random.default_rng(seed)
-    stored = [(source, spec) for _, source, spec in _random_stored(rng, count // 2, version)]
+    n_stored = {"both": count // 2, "stored": count, "train": 0}[source]
+    stored = [(name, spec) for _, name, spec in _random_stored(rng, n_stored, version)]
     renderer = SceneRenderer()
     trained = []
     try:
