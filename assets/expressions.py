@@ -192,8 +192,23 @@ def colored(inst: Instance, noun: str) -> str | None:
         return None
     if package == "wrapper":
         return f"{word}-wrapped {noun}"
-    contents = noun if noun in MEASURES or noun.endswith("s") else f"{noun}s"
-    return f"{word} {package} of {contents}"
+    return f"{word} {package} of {contents(noun)}"
+
+
+def contents(noun: str) -> str:
+    """``noun`` as what a package holds: stuff as it is, things in the plural ("pack of
+    cookies")."""
+    return noun if noun in MEASURES or noun.endswith("s") else f"{noun}s"
+
+
+def material_package(inst: Instance) -> str | None:
+    """The package that says ``inst``'s material ("carton" of juice for paper, "bottle" for
+    plastic), where each material of its category comes in a package of its own."""
+    own = {m: p for (c, m), p in PACKAGES.items() if c == inst.category}
+    package = own.get(inst.material)
+    if package is None or package == "wrapper" or list(own.values()).count(package) > 1:
+        return None
+    return package
 
 
 def own_color_unsaid(inst: Instance) -> bool:

@@ -13,8 +13,10 @@ from .assets.expressions import (
     SHAPE_ADJECTIVE,
     color_word,
     colored,
+    contents,
     count_nouns,
     expressions,
+    material_package,
     modified,
     said_nouns,
 )
@@ -95,7 +97,7 @@ def attribute_word(instance: Instance, attribute: str, direction: str = "") -> s
         shown = shown_color(instance)
         return color_word(shown) if shown else None
     if attribute == "material":
-        return MATERIAL_ADJECTIVE.get(instance.material)
+        return material_package(instance) or MATERIAL_ADJECTIVE.get(instance.material)
     if attribute == "shape":
         return SHAPE_ADJECTIVE.get(instance.shape)
     return {"larger": "biggest", "smaller": "smallest"}[direction]
@@ -110,10 +112,13 @@ def attribute_phrase(instance: Instance, attribute: str, noun: str, direction: s
         if phrase is None:
             raise ValueError(f"{instance.category} shows no colour it has a phrase for")
         return phrase
+    package = material_package(instance) if attribute == "material" else None
+    if package:  # "the carton of juice", never "the paper juice"
+        return f"{package} of {contents(noun)}"
     word = attribute_word(instance, attribute, direction)
-    phrase = modified(word, noun)
+    phrase = modified(word, noun) if word else None
     if phrase is None:
-        raise ValueError(f"{instance.category}: {word!r} repeats a word of {noun!r}")
+        raise ValueError(f"{instance.category}: no {attribute} word {word!r} for {noun!r}")
     return phrase
 
 

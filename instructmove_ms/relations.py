@@ -39,8 +39,8 @@ OPPOSITE = {
 }
 #: How instructions say each relation: every phrase reads as where the object is.
 PHRASES = {
-    "left of": ("to the left of", "left of", "on the left side of"),
-    "right of": ("to the right of", "right of", "on the right side of"),
+    "left of": ("to the left of", "on the left side of"),
+    "right of": ("to the right of", "on the right side of"),
     "in front of": ("in front of",),
     "behind": ("behind",),
     "near": ("near", "next to", "closest to"),

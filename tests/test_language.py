@@ -156,3 +156,9 @@ def test_a_relation_never_follows_take():
     assert RELATION_TEMPLATES and not [t for t in RELATION_TEMPLATES if t.startswith("take")]
     assert TASKS["PickSpatial-InstructMove"].templates == RELATION_TEMPLATES
     assert not [t for t in TASKS["PickCategory-InstructMove"].templates if "grasp" in t]
+
+
+def test_a_packaged_foods_material_is_its_package():
+    juices = {i.material: i for i in _instances("juice")}
+    assert attribute_phrases(juices["paper"], "material") == ["carton of juice"]
+    assert attribute_phrases(juices["plastic"], "material") == ["bottle of juice"]
