@@ -9,12 +9,11 @@ import sapien
 from mani_skill.agents.base_agent import Keyframe
 from mani_skill.agents.registration import register_agent
 from mani_skill.agents.robots.panda.panda import Panda
-from mani_skill.sensors.camera import CameraConfig
 from mani_skill.utils import sapien_utils
 
 from instructmove_ms.layout import Workspace
 
-from .cameras import DEFAULT_HEIGHT, DEFAULT_WIDTH, Intrinsics
+from .cameras import DEFAULT_HEIGHT, DEFAULT_WIDTH, Intrinsics, PublishedCameraConfig
 from .hardware import Gripper, JointLimits
 from .interface import InstructMoveAgent
 
@@ -83,23 +82,30 @@ class FrankaInstructMove(InstructMoveAgent, Panda):
         ):
             pose = sapien_utils.look_at(eye=eye, target=WORKSPACE_CENTER)
             configs.append(
-                CameraConfig(
-                    uid, pose, DEFAULT_WIDTH, DEFAULT_HEIGHT, intr.fov_y, 0.01, 10.0, mount=base
+                PublishedCameraConfig(
+                    uid,
+                    pose,
+                    DEFAULT_WIDTH,
+                    DEFAULT_HEIGHT,
+                    near=0.01,
+                    far=10.0,
+                    mount=base,
+                    published=intr,
                 )
             )
         # Published mount on the hand; the hand's z axis points through the fingertips and the
         # camera looks at the grasp region between them.
         wrist_pose = sapien_utils.look_at(eye=WRIST_EYE, target=(0.0, 0.0, 0.15))
         configs.append(
-            CameraConfig(
+            PublishedCameraConfig(
                 "wrist_camera",
                 wrist_pose,
                 DEFAULT_WIDTH,
                 DEFAULT_HEIGHT,
-                WRIST.fov_y,
-                0.01,
-                10.0,
+                near=0.01,
+                far=10.0,
                 mount=hand,
+                published=WRIST,
             )
         )
         return configs

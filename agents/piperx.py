@@ -28,7 +28,7 @@ from mani_skill.agents.registration import register_agent
 from mani_skill.sensors.camera import CameraConfig
 from mani_skill.utils.structs.link import Link
 
-from .cameras import DEFAULT_HEIGHT, DEFAULT_WIDTH, REFERENCE_HEIGHT, REFERENCE_WIDTH, Intrinsics
+from .cameras import DEFAULT_HEIGHT, DEFAULT_WIDTH, Intrinsics, PublishedCameraConfig
 from .hardware import Gripper, JointLimits
 from .interface import InstructMoveAgent
 
@@ -69,28 +69,6 @@ def optical_pose(xyz: Sequence[float], rotation: np.ndarray) -> sapien.Pose:
     frame[:3, :3] = np.stack([rotation[:, 2], -rotation[:, 0], -rotation[:, 1]], axis=1)
     frame[:3, 3] = xyz
     return sapien.Pose(frame)
-
-
-@dataclass
-class PublishedCameraConfig(CameraConfig):
-    """A camera with ``published`` focal lengths (at 1280x720) scaled to whatever ``width`` x
-    ``height`` is configured, so both published fields of view hold (ManiSkill's ``fov`` fixes
-    only the vertical one). They replace any ``fov`` or ``intrinsic`` given."""
-
-    published: Intrinsics | None = None
-
-    def __post_init__(self) -> None:
-        super().__post_init__()
-        if self.published is not None:
-            sx, sy = self.width / REFERENCE_WIDTH, self.height / REFERENCE_HEIGHT
-            self.fov = None
-            self.intrinsic = np.array(
-                [
-                    [self.published.fx * sx, 0.0, self.width / 2],
-                    [0.0, self.published.fy * sy, self.height / 2],
-                    [0.0, 0.0, 1.0],
-                ]
-            )
 
 
 class GripperWidthController(PDJointPosMimicController):
