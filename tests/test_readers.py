@@ -177,3 +177,17 @@ def test_the_cli_prints_briefs_and_scores(tmp_path):
         [*run, "close-ups", "--out", str(tmp_path)], capture_output=True, text=True
     )
     assert bad.returncode == 2 and "--seed" in bad.stderr
+
+
+def test_close_ups_can_show_another_library_revision():
+    from instructmove_ms.assets.catalog import instance_uuid
+
+    mice = _small_catalog(["mouse"])
+    first = material.at_revision(mice, 1)
+    assert first.name == "test@r1" and len(first) == len(mice)
+    assert {i.uuid for i in first.instances} == {
+        instance_uuid("mouse", i.index) for i in mice.instances
+    }
+    assert {i.uuid for i in mice.instances} == {
+        instance_uuid("mouse", i.index, 2) for i in mice.instances
+    }

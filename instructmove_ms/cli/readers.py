@@ -18,7 +18,10 @@ def _cmd_draw(args: argparse.Namespace) -> int:
     if kind == "close_ups":
         from instructmove_ms.assets.snapshot import load_snapshot
 
-        key = material.close_ups(load_snapshot(args.snapshot), args.seed, out, args.only)
+        catalog = load_snapshot(args.snapshot)
+        if args.library:
+            catalog = material.at_revision(catalog, args.library)
+        key = material.close_ups(catalog, args.seed, out, args.only)
     elif kind == "in_scene":
         import instructmove_ms  # noqa: F401  (registration)
         from instructmove_ms.assets.snapshot import load_snapshot
@@ -89,7 +92,15 @@ def add_parsers(sub: argparse._SubParsersAction) -> None:
             p.add_argument(
                 "--only", nargs="+", metavar="CATEGORY", help="these categories (default: all)"
             )
-        if kind != "close-ups":
+        if kind == "close-ups":
+            p.add_argument(
+                "--library",
+                type=int,
+                metavar="N",
+                help="the snapshot's instances as library revision N builds them (to judge "
+                "a revision before a snapshot freezes it)",
+            )
+        else:
             _add_set_version(p)
         if kind in ("instructions", "episodes"):
             p.add_argument(

@@ -57,6 +57,15 @@ def _categories(catalog: Catalog, only: list[str] | None) -> list[str]:
     return [c for c in catalog.categories if only is None or c in only]
 
 
+def at_revision(catalog: Catalog, library: int) -> Catalog:
+    """``catalog``'s instances (categories and indices) as library revision ``library``
+    builds them."""
+    from ..assets.catalog import generate_instance
+
+    rebuilt = [generate_instance(i.category, i.index, library) for i in catalog.instances]
+    return Catalog(f"{catalog.name}@r{library}", rebuilt)
+
+
 def close_ups(catalog: Catalog, seed: int, out: Path, only: list[str] | None = None) -> Path:
     """A close-up of a random instance of every category of ``catalog`` (or of ``only``),
     in a random order, numbered: pages ``close_ups_N.png``."""
