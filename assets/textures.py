@@ -7,7 +7,8 @@ most of the image, so the part's annotated colour stays its dominant colour. Ima
 square and cover every face of a box and the side of a cylinder (wrapped around it); a
 cylinder's round ends show the image's inscribed disc (see ``uv_meshes``).
 
-Nothing here names a brand: a "wordmark" is a row of letter-like strokes.
+Nothing here names a brand: a "wordmark" is a row of letter-like strokes, and the word
+patterns (``WORDS``) print what a product is (TOOTHPASTE, SODA), in a Hershey font.
 """
 
 from __future__ import annotations
@@ -303,6 +304,97 @@ NEEDED_INKS = {
     "grain": 0,
     "weave": 0,
 }
+
+
+def _pores(img, inks, motif) -> None:
+    """Foam: small round pores of many sizes, darker shades of the ground, scattered over
+    the image (the same scatter on every machine: a fixed seed)."""
+    h, w = img.shape[:2]
+    ground = _ground(img)
+    rng = np.random.default_rng(7)
+    count = int(w * h / 420)
+    xs, ys = rng.uniform(0, w, count), rng.uniform(0, h, count)
+    sizes, shades = rng.uniform(2.5, 7.0, count), rng.uniform(0.6, 0.82, count)
+    for x, y, size, shade in zip(xs, ys, sizes, shades, strict=True):
+        centre = (int(x), int(y))
+        cv2.circle(img, centre, int(round(size)), _bgr(_shade(ground, shade)), -1, cv2.LINE_AA)
+
+
+PATTERNS["pores"] = _pores
+NEEDED_INKS["pores"] = 0
+
+
+#: Printed words: key -> the lines a real product shows of its kind (upper case, no brand).
+#: Each key gives two patterns: ``print_<key>`` (the words once, centred: a box's face) and
+#: ``wrap_<key>`` (the words twice, at a quarter and three quarters of the width: a
+#: cylinder's side, one copy facing +x and one -x when it stands upright).
+WORDS: dict[str, tuple[str, ...]] = {
+    "toothpaste": ("TOOTHPASTE",),
+    "face_wash": ("FACE", "WASH"),
+    "cleanser": ("FACIAL", "CLEANSER"),
+    "sanitizer": ("HAND", "SANITIZER"),
+    "lotion": ("BODY", "LOTION"),
+    "lotion_hand": ("HAND", "LOTION"),
+    "floss": ("FLOSS",),
+    "soda": ("SODA",),
+    "cola": ("COLA",),
+    "lemonade": ("LEMON", "SODA"),
+    "paprika": ("PAPRIKA",),
+    "cinnamon": ("CINNAMON",),
+    "oregano": ("OREGANO",),
+    "curry": ("CURRY",),
+    "ginger": ("GINGER",),
+    "pepper": ("PEPPER",),
+}
+#: The Hershey font words are printed in (pure integer rasterisation: the same pixels on
+#: every machine; no font file).
+WORD_FONT = cv2.FONT_HERSHEY_DUPLEX
+
+
+def _print_words(img, lines, ink, center, width, height) -> None:
+    """``lines`` in ``ink``, centred on ``center`` and as large as fits ``width`` x
+    ``height`` pixels, upright in the image (its first row is the top), left to right."""
+    thick = max(1, int(round(height / len(lines) * 0.09)))
+    sizes = [cv2.getTextSize(t, WORD_FONT, 1.0, thick)[0] for t in lines]
+    line_h = max(h for _, h in sizes)
+    gap = 0.45 * line_h
+    block_w, block_h = max(w for w, _ in sizes), len(lines) * line_h + (len(lines) - 1) * gap
+    scale = min(width / block_w, height / block_h)
+    thick = max(1, int(round(line_h * scale * 0.14)))
+    top = center[1] - block_h * scale / 2
+    for k, (text, (w, _)) in enumerate(zip(lines, sizes, strict=True)):
+        base = top + ((k + 1) * line_h + k * gap) * scale
+        org = (int(round(center[0] - w * scale / 2)), int(round(base)))
+        cv2.putText(img, text, org, WORD_FONT, scale, _bgr(ink), thick, cv2.LINE_AA)
+
+
+def _word_pattern(key: str, wrap: bool):
+    """The drawing of ``print_<key>`` or ``wrap_<key>``: the words in the first ink (and
+    the pictogram in the last ink under them, where a motif is given)."""
+    lines = WORDS[key]
+
+    def draw(img, inks, motif) -> None:
+        h, w = img.shape[:2]
+        xs = (0.25 * w, 0.75 * w) if wrap else (0.5 * w,)
+        width = (0.33 if wrap else 0.86) * w
+        text_h = 0.5 * h if motif else 0.72 * h
+        cy = 0.34 * h if motif else 0.5 * h
+        for x in xs:
+            _print_words(img, lines, COLORS[inks[0]], (x, cy), width, text_h)
+            if motif:
+                _motif(img, motif, (int(x), int(0.78 * h)), int(0.14 * h), COLORS[inks[-1]])
+
+    return draw
+
+
+#: The word patterns (see ``WORDS``).
+WORD_PATTERNS = {
+    f"{kind}_{key}": _word_pattern(key, kind == "wrap")
+    for key in WORDS
+    for kind in ("print", "wrap")
+}
+PATTERNS.update(WORD_PATTERNS)
+NEEDED_INKS.update(dict.fromkeys(WORD_PATTERNS, 1))
 
 
 #: Patterns for a disc (a cylinder's round end shows the image's inscribed circle): drawn

@@ -24,11 +24,45 @@ REVISED_2 = {
 }
 #: What revision 3 rebuilt (categories fresh readers misnamed), and a part that shows it:
 #: bathroom, household and kitchen goods ...
-REVISED_3_BATH: dict[str, tuple[str, str | None]] = {}
+REVISED_3_BATH: dict[str, tuple[str, str | None]] = {
+    "toothpaste": ("cap_flip", None),  # a flat tube printed TOOTHPASTE, a wide flip cap
+    "facial_cleanser": ("label", None),  # a flat tube on its cap, printed FACE WASH
+    "hand_sanitizer": ("bubble_0", "white"),  # clear gel with bubbles, HAND SANITIZER
+    "lotion": ("collar_ring", None),  # a pump bottle printed BODY/HAND LOTION
+    "dental_floss": ("lid_print", None),  # a rounded case, FLOSS on its lid
+    "soap_dish": ("ridge_0", None),  # a shallow tray with drain ridges
+    "spice_jar": ("sifter", None),  # a shaker top over a jar labelled with its spice
+    "sponge": ("pores_x0", None),  # porous foam under a scourer
+    "beverage_bottle": ("neck_ring", None),  # a soft-drink bottle labelled COLA / SODA
+}
 #: ... groceries and stationery ...
-REVISED_3_DESK: dict[str, tuple[str, str | None]] = {}
+REVISED_3_DESK: dict[str, tuple[str, str | None]] = {
+    "cheese_sticks": ("pull_0", None),  # breaded sticks, one broken with the cheese pulling
+    "bread": ("slice_0", None),  # a sliced loaf (or a slashed baguette)
+    "potato": ("knob_0", None),
+    "peach": ("cheek_0", None),  # the cleft
+    "candy": ("pleat_0_0", None),  # the bow-tie twist ends
+    "glue_stick": ("glue", None),  # open, the glue twisted up
+    "sticky_notes": ("curl", None),  # the top note peeling up
+    "staples_box": ("strip_0", None),  # a strip of staples beside the carton
+    "pen_holder": ("pen_0", None),  # pens standing in it
+    "eraser": ("card_sleeve", None),
+}
 #: ... electronics, bedroom, kitchenware, living-room, receptacles and tools.
-REVISED_3_ROOM: dict[str, tuple[str, str | None]] = {}
+REVISED_3_ROOM: dict[str, tuple[str, str | None]] = {
+    "remote_holder": ("remote_0", None),  # TV remotes standing in its pockets
+    "glasses_case": ("lens_0", "transparent"),  # open, a pair of glasses inside
+    "presenter_clicker": ("page_key_0", None),  # back and forward keys with chevrons
+    "ac_remote": ("snowflake_0", "blue"),  # the display shows a temperature and a snowflake
+    "earbud_case": ("bud_0", None),  # open, the earbuds seated inside
+    "mini_sculpture": ("arm_0", None),  # a figure with raised arms for the ring
+    "lunch_box": ("sandwich_0_1", None),  # a bento packed with lunch
+    "placemat": ("fork_head", None),  # printed with a place setting
+    "wire_cutters": ("wire", None),  # diagonal cutters biting a wire
+    "peeler": ("slot", "black"),  # a slotted blade
+    "hex_key": ("clip", None),  # a set of L keys in a clip
+    "candle_holder": ("flame", "yellow"),  # a lit candle in it
+}
 #: Revision -> category -> the part that shows the revision.
 REVISED = {2: REVISED_2, 3: {**REVISED_3_BATH, **REVISED_3_DESK, **REVISED_3_ROOM}}
 #: (category, revision) of every revised build.

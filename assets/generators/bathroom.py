@@ -6,9 +6,10 @@ import math
 from itertools import pairwise
 
 from ..design import Design, Point, Traits
+from ..parts import X_TO_Z, axis_angle_quat, quat_mul
 from ..textures import Texture
 from .desktop import BRIGHT
-from .registry import generator
+from .registry import generator, revised
 
 PASTEL = ["white", "white", "pink", "blue", "green", "beige", "purple", "yellow"]
 
@@ -75,6 +76,108 @@ def toothpaste(d: Design) -> Traits:
     d.rod("shoulder", h * 0.75, 0.01, (a * 0.95, 0, h), "plastic", color)
     cap_len = d.uniform(0.012, 0.02)
     d.rod("cap", h * 0.85, cap_len, (a * 0.95 + 0.005 + cap_len / 2, 0, h), "plastic", cap)
+    return Traits((color, stripe), "plastic", "elongated")
+
+
+#: A quarter turn about z: a box's x along +y, its y along -x (a top face's image then reads
+#: along +y with its top away from a viewer at +x).
+QUARTER = axis_angle_quat((0, 0, 1), math.pi / 2)
+
+
+def _top_print(d: Design, name: str, half: tuple[float, float], z: float, color: str, texture):
+    """A printed label lying flat on z, ``half`` = (along y, along x): the words read along
+    +y, their top towards -x."""
+    d.add(
+        name,
+        "box",
+        (half[0], half[1], 0.0004),
+        (0.0, 0.0, z + 0.0004),
+        "paper",
+        color,
+        quat=QUARTER,
+        visual_only=True,
+        texture=texture,
+    )
+
+
+@revised("toothpaste", 3)
+def toothpaste_3(d: Design) -> Traits:
+    """Revision 3: a flat white squeeze tube lying along y (flat on top, round at the
+    sides), crimped flat at one end and with a wide flip-top cap at the other, printed
+    TOOTHPASTE in big letters with a coloured band (the first, a round ellipsoid with a
+    small cap, read as a tube of paint)."""
+    color = d.choice(["white", "white", "white", "blue", "red"])
+    stripe = d.choice([c for c in ("red", "blue", "green", "red") if c != color])
+    cap = d.choice(["white", "white", stripe])
+    a = d.uniform(0.05, 0.07)  # half length of the tube's body
+    w, hz = d.uniform(0.02, 0.025), d.uniform(0.01, 0.013)  # half width, half thickness
+    core = w - hz
+    d.box("tube", (core, a, hz), (0, 0, hz), "plastic", color, solid_fraction=0.9)
+    for k, s in enumerate((-1, 1)):
+        d.rod(f"tube_side_{k}", hz, 2 * a, (s * core, 0, hz), "plastic", color, axis="y")
+    # the crimped end at -y: the tube flattens to a wide serrated seal
+    reach, seal_w = d.uniform(0.014, 0.02), w * 1.08
+    for k, z in enumerate((2 * hz - 0.001, 0.001)):
+        d.segment(
+            f"taper_{k}",
+            "box",
+            (0, -a, z),
+            (0, -a - reach, hz),
+            (w * 0.98, 0.001),
+            "plastic",
+            color,
+        )
+    d.box("seal", (seal_w, 0.005, 0.0012), (0, -a - reach - 0.004, hz), "plastic", color)
+    for k in range(4):
+        y = -a - reach - 0.0075 + k * 0.0022
+        d.box(
+            f"seal_rib_{k}",
+            (seal_w, 0.0004, 0.0014),
+            (0, y, hz),
+            "plastic",
+            stripe,
+            visual_only=True,
+        )
+    # the shoulder, neck and a wide flip-top cap at +y
+    d.rod("shoulder", hz * 0.95, 0.008, (0, a + 0.004, hz), "plastic", color)
+    cap_len = d.uniform(0.014, 0.02)
+    cap_y, cap_r = a + 0.008 + cap_len / 2, hz * 1.1
+    d.box("cap_flip", (w * 0.5, cap_len / 2, cap_r), (0, cap_y, cap_r), "plastic", cap)
+    for k, s in enumerate((-1, 1)):
+        d.rod(
+            f"cap_side_{k}", cap_r, cap_len, (s * w * 0.5, cap_y, cap_r), "plastic", cap, axis="y"
+        )
+    d.box(
+        "cap_hinge_line",
+        (w * 0.5, 0.0006, 0.0006),
+        (0, a + 0.008 + cap_len * 0.35, 2 * cap_r + 0.0002),
+        "plastic",
+        stripe if cap != stripe else "white",
+        visual_only=True,
+    )
+    # the print: a coloured band by the cap, the word across the flat top
+    d.add(
+        "band",
+        "box",
+        (core * 1.02, a * 0.14, hz * 1.02),
+        (0, a * 0.82, hz),
+        "plastic",
+        stripe,
+        visual_only=True,
+    )
+    for k, s in enumerate((-1, 1)):
+        d.rod(
+            f"band_side_{k}",
+            hz * 1.02,
+            a * 0.28,
+            (s * core, a * 0.82, hz),
+            "plastic",
+            stripe,
+            axis="y",
+            visual_only=True,
+        )
+    word = Texture("print_toothpaste", (stripe if color == "white" else "white",))
+    _top_print(d, "label", (a * 0.62, core * 0.98 + hz * 0.3), 2 * hz, color, word)
     return Traits((color, stripe), "plastic", "elongated")
 
 
@@ -416,3 +519,302 @@ def facial_cleanser(d: Design) -> Traits:
     top = center + tube_h
     d.box("crimp", (w * 1.1, 0.0012, 0.006), (0, 0, top - 0.004), "plastic", color)
     return Traits((color, cap), "plastic", "cylinder")
+
+
+def _flat_tube(d: Design, name: str, t: float, w: float, z0: float, h: float, color, **kw):
+    """An upright flattened tube section from z0 up ``h``: a box ``2 t`` deep (x) and two
+    round sides of radius ``t`` at y = +-(w - t), ``2 w`` wide in all."""
+    core = w - t
+    d.box(name, (t, core, h / 2), (0, 0, z0 + h / 2), "plastic", color, **kw)
+    for k, s in enumerate((-1, 1)):
+        d.upright(f"{name}_side_{k}", t, h, z0, "plastic", color, xy=(0, s * core))
+
+
+@revised("facial_cleanser", 3)
+def facial_cleanser_3(d: Design) -> Traits:
+    """Revision 3: a slim flattened squeeze tube standing on its wide flip-top cap, its
+    flat front printed FACE WASH (or FACIAL CLEANSER) and crimped flat at the top (the
+    first, a plain rounded tube, read as a lotion or a toothpaste tube)."""
+    color = d.choice(["white", "white", "blue", "green", "pink", "orange", "purple"])
+    cap = d.choice([c for c in ("white", "blue", "silver", "black", "pink") if c != color])
+    ink = d.choice([c for c in ("blue", "green", "purple", "pink") if c != color])
+    ink = ink if color == "white" else "white"
+    t, w = d.uniform(0.01, 0.012), d.uniform(0.025, 0.029)
+    cap_h = d.uniform(0.014, 0.018)
+    _flat_tube(d, "cap", t * 1.15, w * 0.75, 0.0, cap_h, cap)
+    d.box(
+        "cap_seam",
+        (t * 1.15 + 0.0004, w * 0.75 - t * 1.15, 0.0006),
+        (0, 0, cap_h * 0.7),
+        "plastic",
+        "gray" if cap != "gray" else "white",
+        visual_only=True,
+    )
+    body = d.uniform(0.075, 0.1)
+    _flat_tube(d, "tube", t, w, cap_h, body, color)
+    d.box(
+        "label",
+        (0.0003, w - t * 0.7, body * 0.3),
+        (t + 0.0003, 0, cap_h + body * 0.5),
+        "plastic",
+        color,
+        visual_only=True,
+        texture=Texture("print_face_wash", (ink,)),
+    )
+    top, reach = cap_h + body, d.uniform(0.028, 0.036)
+    steps = 4  # the tube flattens towards the crimp
+    for k in range(steps):
+        depth = t * (1 - (k + 1) / (steps + 0.6))
+        z0 = top + reach * k / steps
+        _flat_tube(d, f"flat_{k}", depth, w * (1 + 0.012 * (k + 1)), z0, reach / steps, color)
+    d.box("crimp", (0.0013, w * 1.04, 0.0055), (0, 0, top + reach + 0.0045), "plastic", color)
+    for k in range(3):
+        d.box(
+            f"crimp_rib_{k}",
+            (0.0016, w * 1.04, 0.0004),
+            (0, 0, top + reach + 0.002 + k * 0.0022),
+            "plastic",
+            cap,
+            visual_only=True,
+        )
+    return Traits((color, cap), "plastic", "cylinder")
+
+
+#: How far a wrapped label turns its front from +x towards +y: towards a viewer in front
+#: and to the left of the object, as the contact sheets' camera is.
+FACING = 0.5
+
+
+def _wrap_label(d: Design, name: str, radius, height, z0, color, texture, xy=(0.0, 0.0)):
+    """A printed sleeve round an upright cylinder (no mass): its words face ``FACING``
+    from +x and half a turn from there."""
+    quat = quat_mul(axis_angle_quat((0, 0, 1), FACING), X_TO_Z)
+    center = (xy[0], xy[1], z0 + height / 2)
+    d.add(
+        name,
+        "cylinder",
+        (radius, height / 2),
+        center,
+        "paper",
+        color,
+        quat=quat,
+        visual_only=True,
+        texture=texture,
+    )
+
+
+def _stadium_y(d: Design, name: str, half_len: float, r: float, z0: float, h: float, color, **kw):
+    """An upright prism of rounded-rectangle section long along y (its flat faces towards
+    +-x, where a reader looks): a box and two end cylinders ``{name}_end_{k}``."""
+    d.box(name, (r, half_len, h / 2), (0, 0, z0 + h / 2), "plastic", color, **kw)
+    for k, s in enumerate((-1, 1)):
+        d.upright(f"{name}_end_{k}", r, h, z0, "plastic", color, xy=(0, s * half_len), **kw)
+
+
+def _pump_y(d: Design, z0: float, color: str, nozzle: float) -> None:
+    """A pump dispenser (collar, stem, head) on z0, its nozzle towards +y (seen side on)."""
+    collar = d.uniform(0.012, 0.015)
+    d.upright("collar", collar, 0.012, z0, "plastic", color)
+    stem = d.uniform(0.01, 0.018)
+    d.upright("stem", 0.0045, stem, z0 + 0.012, "plastic", color)
+    top = z0 + 0.012 + stem
+    d.upright("pump_head", collar * 0.9, 0.013, top, "plastic", color)
+    d.segment(
+        "pump_nozzle",
+        "box",
+        (0, 0, top + 0.008),
+        (0, collar + nozzle, top + 0.006),
+        (0.004, 0.0035),
+        "plastic",
+        color,
+    )
+
+
+@revised("hand_sanitizer", 3)
+def hand_sanitizer_3(d: Design) -> Traits:
+    """Revision 3: a flat clear bottle of tinted gel (bubbles in it), its broad face
+    towards the reader with a label printed HAND SANITIZER, under a pump or a flip cap
+    (the first, with a wordless sticker on its narrow side, read as a soap dispenser)."""
+    cap = d.choice(["white", "blue", "green", "black", "purple"])
+    gel = d.choice(["transparent", "blue", "green", "transparent"])
+    label = d.choice([c for c in ("white", "white", "blue", "green") if c != gel])
+    ink = d.choice(["blue", "green", "red"]) if label == "white" else "white"
+    h, r = d.uniform(0.085, 0.12), d.uniform(0.014, 0.018)
+    half_len, fill = d.uniform(0.018, 0.026), h * d.uniform(0.7, 0.88)
+    _stadium_y(d, "gel", half_len, r, 0.0, fill, gel, solid_fraction=0.95)
+    _stadium_y(d, "body", half_len, r, fill, h - fill, "transparent", solid_fraction=0.1)
+    for k in range(5):  # air bubbles held in the gel
+        y, z = d.uniform(-half_len, half_len), d.uniform(0.15, 0.9) * fill
+        d.sphere(
+            f"bubble_{k}",
+            d.uniform(0.0012, 0.0025),
+            (r - 0.002, y, z),
+            "plastic",
+            "white",
+            visual_only=True,
+        )
+    d.box(
+        "label",
+        (0.0004, half_len + r * 0.45, h * 0.26),
+        (r + 0.0004, 0, h * 0.42),
+        "paper",
+        label,
+        visual_only=True,
+        texture=Texture("print_sanitizer", (ink,)),
+    )
+    d.ellipsoid(
+        "shoulder", (r, half_len + r, 0.01), (0, 0, h), "plastic", "transparent", solid_fraction=0.3
+    )
+    if d.choice([True, False]):
+        _pump_y(d, h + 0.006, cap, nozzle=d.uniform(0.012, 0.018))
+    else:
+        d.upright("neck", 0.01, 0.006, h + 0.006, "plastic", "transparent")
+        _flip_cap(d, d.uniform(0.012, 0.015), h + 0.012, cap)
+    return Traits(("transparent", cap if gel == "transparent" else gel), "plastic", "cuboid")
+
+
+@revised("lotion", 3)
+def lotion_3(d: Design) -> Traits:
+    """Revision 3: a tall creamy bottle with a long pump, printed BODY LOTION (or HAND
+    LOTION) front and back (the first, with a plain band, read as a soap
+    dispenser; lotion and shampoo bottles were read as each other)."""
+    color = d.choice(["white", "white", "beige", "pink", "purple", "blue", "green"])
+    pump = d.choice(["white", "black", "silver", "golden"])
+    ink = d.choice([c for c in ("blue", "purple", "green") if c != color])
+    ink = ink if color in ("white", "beige", "pink") else "white"
+    r, h = d.uniform(0.026, 0.032), d.uniform(0.12, 0.16)
+    d.upright("body", r, h, 0.0, "plastic", color, solid_fraction=0.85)
+    word = Texture(d.choice(["wrap_lotion", "wrap_lotion", "wrap_lotion_hand"]), (ink,))
+    _wrap_label(d, "label", r + 0.0008, h * 0.5, h * 0.2, color, word)
+    d.ellipsoid("shoulder", (r, r, 0.014), (0, 0, h), "plastic", color, solid_fraction=0.85)
+    d.upright("collar_ring", 0.014, 0.006, h + 0.01, "plastic", pump)
+    _pump_y(d, h + 0.016, pump, nozzle=d.uniform(0.02, 0.028))
+    return Traits((color, pump), "plastic", "cylinder")
+
+
+@revised("dental_floss", 3)
+def dental_floss_3(d: Design) -> Traits:
+    """Revision 3: a small flat rounded case with a snap lid printed FLOSS over a tooth,
+    and the thread coming out over the metal cutter on its front, hanging down (the
+    first, a round plain case, read as a pot or a tin, earlier as a tape measure)."""
+    color = d.choice(["white", "white", "white", "blue", "green", "pink"])
+    lid = d.choice([color, color, "white", "blue", "green"])
+    ink = d.choice(["blue", "green"]) if lid == "white" else "white"
+    r, half_len = d.uniform(0.014, 0.017), d.uniform(0.008, 0.012)
+    h = d.uniform(0.016, 0.02)
+    base_h = h * 0.6
+    _stadium_y(d, "case", half_len, r, 0.0, base_h, color, solid_fraction=0.7)
+    _stadium_y(d, "lid", half_len, r, base_h, h - base_h, lid, solid_fraction=0.7)
+    d.box(
+        "lid_seam",
+        (r + 0.0003, half_len, 0.0004),
+        (0, 0, base_h),
+        "plastic",
+        "gray",
+        visual_only=True,
+    )
+    word = Texture("print_floss", (ink,), "tooth")
+    _top_print(d, "lid_print", (half_len + r * 0.5, r * 0.78), h, lid, word)
+    # the cutter on the lid's front edge, and the thread over it, hanging down the front
+    d.box("cutter", (0.0006, 0.006, 0.0025), (r + 0.0006, 0, h - 0.0025), "metal", "silver")
+    d.rod(
+        "thread_out",
+        0.0005,
+        0.008,
+        (r + 0.0013, 0, h - 0.0012),
+        "fabric",
+        "white",
+        axis="y",
+        visual_only=True,
+    )
+    d.segment(
+        "thread",
+        "cylinder",
+        (r + 0.0014, 0.003, h - 0.0012),
+        (r + 0.0016, 0.005, base_h * 0.6),
+        0.0005,
+        "fabric",
+        "white",
+        visual_only=True,
+    )
+    return Traits((color,) if lid == color else (color, lid), "plastic", "cuboid")
+
+
+@revised("soap_dish", 3)
+def soap_dish_3(d: Design) -> Traits:
+    """Revision 3: a shallow tray on little feet, its low wall with a lip, and raised
+    drain ridges across its floor with the drain slots between them (the first, a deeper
+    plain tray or a flared round dish, read as a wooden bowl or a basket)."""
+    material = d.choice(["ceramic", "ceramic", "plastic", "wood"])
+    color = "brown" if material == "wood" else d.choice(PASTEL)
+    lx, ly = d.uniform(0.052, 0.064), d.uniform(0.035, 0.042)  # outer half extents
+    t, corner, foot = 0.004, 0.005, 0.003
+    floor, rim = foot + 0.004, foot + d.uniform(0.015, 0.019)
+    for k, (sx, sy) in enumerate(((-1, -1), (-1, 1), (1, -1), (1, 1))):
+        xy = (sx * (lx - corner), sy * (ly - corner))
+        d.upright(f"foot_{k}", 0.005, foot, 0.0, material, color, xy=(xy[0] * 0.8, xy[1] * 0.8))
+        d.upright(f"corner_{k}", corner, rim - foot, foot, material, color, xy=xy)
+    d.box(
+        "floor", (lx - corner, ly, (floor - foot) / 2), (0, 0, (floor + foot) / 2), material, color
+    )
+    d.box(
+        "floor_ends",
+        (lx, ly - corner, (floor - foot) / 2),
+        (0, 0, (floor + foot) / 2),
+        material,
+        color,
+    )
+    for k, s in enumerate((-1, 1)):
+        d.box(
+            f"wall_x{k}",
+            (t / 2, ly - corner, (rim - floor) / 2),
+            (s * (lx - t / 2), 0, (rim + floor) / 2),
+            material,
+            color,
+        )
+        d.box(
+            f"wall_y{k}",
+            (lx - corner, t / 2, (rim - floor) / 2),
+            (0, s * (ly - t / 2), (rim + floor) / 2),
+            material,
+            color,
+        )
+        d.box(
+            f"lip_x{k}",
+            (0.003, ly + 0.004, 0.0015),
+            (s * (lx + 0.001), 0, rim - 0.0015),
+            material,
+            color,
+            visual_only=True,
+        )
+        d.box(
+            f"lip_y{k}",
+            (lx + 0.004, 0.003, 0.0015),
+            (0, s * (ly + 0.001), rim - 0.0015),
+            material,
+            color,
+            visual_only=True,
+        )
+    rib_h, inner_x, inner_y = 0.0035, lx - t, ly - t
+    ribs = 7
+    drain = "gray" if color != "gray" else "black"
+    for k in range(ribs):
+        x = inner_x * 0.85 * (2 * k + 1 - ribs) / ribs
+        d.box(
+            f"ridge_{k}",
+            (0.0018, inner_y * 0.85, rib_h / 2),
+            (x, 0, floor + rib_h / 2),
+            material,
+            color,
+        )
+        if k:
+            d.box(
+                f"drain_{k}",
+                (0.0012, inner_y * 0.6, 0.0003),
+                (x - inner_x * 0.85 / ribs, 0, floor + 0.0003),
+                material,
+                drain,
+                visual_only=True,
+            )
+    d.interior((inner_x * 0.85, inner_y * 0.8), floor_z=floor + rib_h, rim_z=rim)
+    return Traits((color,), material, "cuboid")

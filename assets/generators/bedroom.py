@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 
 from ..design import Design, Traits
-from ..parts import X_TO_Y, axis_angle_quat
+from ..parts import X_TO_Y, X_TO_Z, axis_angle_quat
 from ..textures import Texture
 from .registry import generator, revised
 
@@ -151,6 +151,99 @@ def glasses_case(d: Design) -> Traits:
     return Traits((color,), material, "ellipsoid")
 
 
+@revised("glasses_case", 3)
+def glasses_case_3(d: Design) -> Traits:
+    """Revision 3: a hard clamshell case standing open, a pair of glasses folded inside (the
+    closed first case read as a stapler or as nothing at all)."""
+    material, color, fill = d.choice(
+        [
+            ("leather", "brown", 0.3),
+            ("leather", "black", 0.3),
+            ("plastic", "black", 0.3),
+            ("plastic", "blue", 0.3),
+            ("plastic", "red", 0.3),
+            ("aluminium", "silver", 0.08),
+        ]
+    )
+    lining = d.choice(["beige", "gray", "red"] if color != "red" else ["beige", "gray"])
+    frame = d.choice(["black", "brown", "golden", "red"])
+    length, w = d.uniform(0.15, 0.17), d.uniform(0.056, 0.064)
+    hb, t = d.uniform(0.02, 0.024), 0.003
+    core = length / 2 - w / 2
+    kw = dict(solid_fraction=fill)
+    # the lower shell: a floor, two long walls and round ends of boxes (open to see in)
+    d.stadium("floor", core, w / 2 - t / 2, 0.0, t, material, color, end_fill=0.5)
+    d.box(
+        "lining",
+        (core, w / 2 - t - 0.001, 0.0004),
+        (0, 0, t + 0.0004),
+        "fabric",
+        lining,
+        visual_only=True,
+    )
+    for k, sign in enumerate((-1, 1)):
+        d.box(
+            f"wall_{k}",
+            (core, t / 2, hb / 2),
+            (0, sign * (w / 2 - t / 2), hb / 2),
+            material,
+            color,
+            **kw,
+        )
+        for j in range(5):
+            a = math.pi / 2 - math.pi * (j + 0.5) / 5
+            r = w / 2 - t / 2
+            pos = (sign * (core + r * math.cos(a)), r * math.sin(a), hb / 2)
+            chord = 2 * w / 2 * math.tan(math.pi / 10) * 1.05
+            d.box(
+                f"end_{k}_{j}",
+                (t / 2, chord / 2, hb / 2),
+                pos,
+                material,
+                color,
+                yaw=a if sign > 0 else math.pi - a,
+                **kw,
+            )
+    # the lid, open and leaning back on its hinge along the back edge (-y)
+    tilt = 1.9
+    quat = axis_angle_quat((1, 0, 0), tilt)
+    hz = hb * 0.8
+    hinge_y, hinge_z = -w / 2, hb
+    ux, uz = math.cos(tilt), math.sin(tilt)  # the lid's width axis after the turn
+    lid_c = (0, hinge_y + ux * w / 2, hinge_z + uz * w / 2)
+    d.add("lid", "ellipsoid", (length / 2, w / 2, hz), lid_c, material, color, quat=quat, **kw)
+    d.add("hinge", "cylinder", (0.003, core * 0.5), (0, hinge_y, hinge_z), "metal", "silver")
+    # the glasses inside: two lenses in a frame, a bridge, temples folded over them
+    z = t + 0.0035
+    lens = min(core * 0.52, w / 2 - t - 0.006)
+    for k, sign in enumerate((-1, 1)):
+        c = (sign * (lens + 0.006), 0.002, z)
+        d.add(
+            f"lens_{k}",
+            "cylinder",
+            (lens, 0.0012),
+            c,
+            "glass",
+            "transparent",
+            quat=X_TO_Z,
+            visual_only=True,
+        )
+        d.flat_ring(
+            f"rim_{k}", lens, 0.0025, 0.003, z - 0.0015, "plastic", frame, center=c[:2], segments=12
+        )
+        d.segment(
+            f"temple_{k}",
+            "box",
+            (sign * 0.006, -lens + 0.001, z + 0.003),
+            (sign * (2 * lens + 0.008), -lens + 0.001, z + 0.003),
+            (0.0015, 0.0012),
+            "plastic",
+            frame,
+        )
+    d.box("bridge", (0.006, 0.0015, 0.0015), (0, lens * 0.5, z), "plastic", frame)
+    return Traits((color,), material, "ellipsoid")
+
+
 @generator(
     "pill_organizer",
     size=(0.12, 0.24),
@@ -240,6 +333,99 @@ def remote_holder(d: Design) -> Traits:
     )
     d.interior(
         (hx / 2 - t, depth / 2 - t), floor_z=t, rim_z=heights[0], center=(hx / 2, hy - depth / 2)
+    )
+    return Traits((color,), material, "cuboid")
+
+
+@revised("remote_holder", 3)
+def remote_holder_3(d: Design) -> Traits:
+    """Revision 3: an open caddy with TV remotes standing in two of its pockets (the empty
+    stepped caddy read as a shelf, a bench or a spice rack); the third pocket stays free."""
+    material, color = d.choice(
+        [
+            ("wood", "brown"),
+            ("wood", "beige"),
+            ("plastic", "black"),
+            ("plastic", "white"),
+            ("leather", "black"),
+            ("leather", "brown"),
+            ("plastic", "gray"),
+        ]
+    )
+    t = 0.006 if material == "wood" else 0.004
+    hx, hy = d.uniform(0.075, 0.095), d.uniform(0.028, 0.034)
+    back, front = d.uniform(0.085, 0.1), d.uniform(0.05, 0.06)
+    d.box("floor", (hx, hy, t / 2), (0, 0, t / 2), material, color)
+    d.box("back", (hx, t / 2, back / 2), (0, -hy + t / 2, back / 2), material, color)
+    d.box("front", (hx, t / 2, front / 2), (0, hy - t / 2, front / 2), material, color)
+    for k, sign in enumerate((-1, 1)):
+        d.segment(
+            f"side_{k}",
+            "box",
+            (sign * (hx - t / 2), -hy + t, back - 0.012),
+            (sign * (hx - t / 2), hy - t, front - 0.004),
+            (t / 2, 0.012),
+            material,
+            color,
+        )
+        d.box(
+            f"side_low_{k}",
+            (t / 2, hy - t, (front - 0.01) / 2),
+            (sign * (hx - t / 2), 0, (front - 0.01) / 2),
+            material,
+            color,
+        )
+    pocket = (2 * hx - t) / 3  # three pockets across x, the last one (+x) left free
+    for k in (1, 2):
+        x = -hx + t / 2 + k * pocket
+        d.box(
+            f"pocket_wall_{k}", (t / 2, hy - t, front * 0.45), (x, 0, front * 0.45), material, color
+        )
+    remotes = d.choice(
+        [["black", "black"], ["black", "gray"], ["gray", "black"], ["black", "silver"]]
+    )
+    for k, shell in enumerate(remotes):
+        x = -hx + t / 2 + (k + 0.5) * pocket
+        rl, rw, rt = d.uniform(0.15, 0.175), min(pocket - t - 0.006, 0.045) / 2, 0.0085
+        lean = d.uniform(0.04, 0.12)  # leaning back against the back wall
+        quat = axis_angle_quat((1, 0, 0), lean)
+        c = (x, 0.0, t + rl / 2)
+        d.add(
+            f"remote_{k}",
+            "box",
+            (rw, rt, rl / 2),
+            c,
+            "plastic",
+            shell,
+            quat=quat,
+            solid_fraction=0.4,
+        )
+        key = "gray" if shell == "black" else "black"
+
+        def face(u, v, name, color, half, c=c, lean=lean, rt=rt, quat=quat):
+            """A button on the remote's front face at (across u, up v from its centre)."""
+            y = c[1] + (rt + 0.0005) * math.cos(lean) - v * math.sin(lean)
+            z = c[2] + v * math.cos(lean) + (rt + 0.0005) * math.sin(lean)
+            d.add(name, "box", half, (c[0] + u, y, z), "rubber", color, quat=quat, visual_only=True)
+
+        top = rl / 2 - 0.012
+        face(-rw * 0.5, top, f"power_{k}", "red", (0.0035, 0.0006, 0.0025))
+        face(0, top - 0.022, f"nav_{k}", key, (rw * 0.55, 0.0006, rw * 0.55))
+        face(0, top - 0.022, f"ok_{k}", shell, (rw * 0.22, 0.0009, rw * 0.22))
+        for row in range(2):
+            for col in (-1, 0, 1):
+                face(
+                    col * rw * 0.55,
+                    top - 0.045 - row * 0.011,
+                    f"key_{k}_{row}_{col}",
+                    key,
+                    (rw * 0.2, 0.0006, 0.0035),
+                )
+    d.interior(
+        (pocket / 2 - t - 0.002, hy - t - 0.002),
+        floor_z=t,
+        rim_z=front,
+        center=(hx - t / 2 - pocket / 2, 0.0),
     )
     return Traits((color,), material, "cuboid")
 

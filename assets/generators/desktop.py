@@ -2,8 +2,11 @@
 
 from __future__ import annotations
 
+import math
+
 from ..design import Design, Traits
-from .registry import generator
+from ..textures import Texture
+from .registry import generator, revised
 
 BRIGHT = ["red", "blue", "green", "black", "yellow", "orange", "purple", "pink"]
 
@@ -86,3 +89,59 @@ def usb_drive(d: Design) -> Traits:
     d.box("body", (lx / 2, ly / 2, lz / 2), (0, 0, lz / 2), "plastic", color)
     d.box("connector", (0.006, 0.006, 0.0025), (lx / 2 + 0.006, 0, lz / 2), "metal", "silver")
     return Traits((color,), "plastic", "cuboid")
+
+
+@revised("eraser", 3)
+def eraser_3(d: Design) -> Traits:
+    """Revision 3: a soft block eraser, its used end worn round and smudged grey with
+    rubbings lying beside it, the rest in a thin printed card sleeve (the square two-tone
+    block read as a pencil case or a box)."""
+    color = d.choice(["white", "white", "pink", "blue", "green"])
+    sleeve = d.choice(["blue", "black", "red", "yellow"])
+    ink = "white" if sleeve in ("blue", "black", "red") else "black"
+    lx, ly, lz = d.uniform(0.045, 0.06), d.uniform(0.019, 0.024), d.uniform(0.011, 0.013)
+    rz = lz / 2
+    core = lx - 2 * rz
+    d.box("block", (core / 2, ly / 2, lz / 2), (0, 0, lz / 2), "rubber", color)
+    d.rod("worn_end", rz, ly, (core / 2, 0, rz), "rubber", color, axis="y")
+    d.rod("back_end", rz * 0.8, ly, (-core / 2 + rz * 0.1, 0, rz * 0.8), "rubber", color, axis="y")
+    d.box(
+        "back_fill",
+        (rz * 0.5, ly / 2, lz / 2),
+        (-core / 2 + rz * 0.1, 0, lz / 2),
+        "rubber",
+        color,
+    )
+    smudge = "gray" if color != "blue" else "black"
+    d.ellipsoid(
+        "smudge",
+        (rz * 0.55, ly * 0.4, rz * 0.7),
+        (core / 2 + rz * 0.5, 0, rz * 1.0),
+        "rubber",
+        smudge,
+        visual_only=True,
+    )
+    cover = lx * d.uniform(0.5, 0.6)
+    d.box(
+        "card_sleeve",
+        (cover / 2, ly / 2 + 0.0005, lz / 2 + 0.0005),
+        (-lx / 2 + rz * 0.6 + cover / 2, 0, lz / 2),
+        "paper",
+        sleeve,
+        visual_only=True,
+        texture=Texture("label", (ink, sleeve)),
+    )
+    for k in range(d.choice([3, 4, 5])):  # rubbings, curled crumbs of eraser
+        a, dist = d.uniform(-0.9, 0.9), d.uniform(0.007, 0.012)
+        pos = (lx / 2 + dist * math.cos(a), dist * math.sin(a) * 1.4, 0.0012)
+        d.rod(
+            f"rubbing_{k}",
+            0.0011,
+            d.uniform(0.003, 0.006),
+            pos,
+            "rubber",
+            smudge if k % 2 else color,
+            capsule=True,
+            visual_only=True,
+        )
+    return Traits((color, sleeve), "rubber", "cuboid")

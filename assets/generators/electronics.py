@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 
 from ..design import Design, Traits
-from ..parts import axis_angle_quat
+from ..parts import X_TO_Z, axis_angle_quat, quat_mul
 from .registry import generator, revised
 
 
@@ -144,6 +144,168 @@ def ac_remote(d: Design) -> Traits:
     return Traits((color,), "plastic", "cuboid")
 
 
+#: The lit segments of a seven-segment digit (a top, b top right, c bottom right, d bottom,
+#: e bottom left, f top left, g middle), and the ends of each in a cell one wide, two high.
+LCD_LIT = {
+    "1": "bc",
+    "2": "abged",
+    "4": "fgbc",
+    "5": "afgcd",
+    "6": "afgedc",
+    "8": "abcdefg",
+    "C": "afed",
+}
+LCD_SEGMENTS = {
+    "a": (0, 0, 1, 0),
+    "b": (1, 0, 1, 1),
+    "c": (1, 1, 1, 2),
+    "d": (0, 2, 1, 2),
+    "e": (0, 1, 0, 2),
+    "f": (0, 0, 0, 1),
+    "g": (0, 1, 1, 1),
+}
+
+
+def lcd_glyph(d: Design, name: str, glyph: str, top_left, cell: float, z: float, ink: str):
+    """A seven-segment glyph printed flat at height z, read with its top towards -x (its
+    left at -y): ``cell`` wide, twice that high, from the top-left corner (x, y)."""
+    x0, y0 = top_left
+    for seg in LCD_LIT[glyph]:
+        a, b, c, e = LCD_SEGMENTS[seg]
+        p0 = (x0 + b * cell, y0 + a * cell, z)
+        p1 = (x0 + e * cell, y0 + c * cell, z)
+        d.segment(
+            f"{name}_{seg}", "box", p0, p1, (cell * 0.13, 0.0003), "plastic", ink, visual_only=True
+        )
+
+
+@revised("ac_remote", 3)
+def ac_remote_3(d: Design) -> Traits:
+    """Revision 3: a large display at the top end shows the set temperature (24 degrees C,
+    say) beside a snowflake and a sun, over a red power key, big temperature up/down keys
+    and a grid of mode keys (the first read as any remote control)."""
+    color = d.choice(["white", "white", "beige", "gray", "silver"])
+    keys = "gray" if color in ("white", "beige") else "white"
+    lx, w, t = d.uniform(0.14, 0.17), d.uniform(0.05, 0.058), d.uniform(0.016, 0.02)
+    core = lx - t
+    d.box("body", (core / 2, w / 2, t / 2), (0, 0, t / 2), "plastic", color, solid_fraction=0.6)
+    for sign in (-1, 1):
+        d.rod(
+            f"end_{sign}",
+            t / 2,
+            w,
+            (sign * core / 2, 0, t / 2),
+            "plastic",
+            color,
+            axis="y",
+            solid_fraction=0.3,
+        )
+    d.rod(
+        "ir_window",
+        t * 0.32,
+        w * 0.5,
+        (-lx / 2 + 0.0015, 0, t / 2),
+        "plastic",
+        "black",
+        axis="y",
+        visual_only=True,
+    )
+    # the display, its top towards -x: the temperature large, the mode icons left of it
+    sx0, sx1 = -core / 2 + 0.004, -core / 2 + 0.004 + w * 0.62
+    z = t + 0.0004
+    d.box(
+        "display_bezel",
+        ((sx1 - sx0) / 2 + 0.002, w * 0.42, 0.0003),
+        ((sx0 + sx1) / 2, 0, t),
+        "plastic",
+        "black" if color != "gray" else "white",
+        visual_only=True,
+    )
+    d.box(
+        "lcd",
+        ((sx1 - sx0) / 2, w * 0.38, 0.0004),
+        ((sx0 + sx1) / 2, 0, z),
+        "plastic",
+        "gray",
+        visual_only=True,
+    )
+    temp = d.choice(["24", "25", "26", "22", "18", "16"])
+    span = sx1 - sx0
+    cell = span * 0.25
+    y, top = -w * 0.17, sx0 + (span - 2 * cell) / 2
+    zt = z + 0.0004
+    for k, glyph in enumerate(temp):
+        lcd_glyph(d, f"temp_digit_{k}", glyph, (top, y + k * cell * 1.45), cell, zt, "black")
+    deg = y + 2 * cell * 1.45
+    d.flat_ring(
+        "degree",
+        cell * 0.14,
+        cell * 0.08,
+        0.0003,
+        z,
+        "plastic",
+        "black",
+        center=(top + 0.1 * cell, deg),
+        segments=8,
+        visual_only=True,
+    )
+    lcd_glyph(d, "unit", "C", (top, deg + 0.3 * cell), cell * 0.5, zt, "black")
+    flake = (sx0 + 0.3 * span, -w * 0.29)
+    for k in range(3):
+        a = k * math.pi / 3
+        d.box(
+            f"snowflake_{k}",
+            (cell * 0.5, cell * 0.07, 0.0003),
+            (*flake, zt),
+            "plastic",
+            "blue",
+            yaw=a,
+            visual_only=True,
+        )
+    sun = (sx0 + 0.72 * span, -w * 0.29)
+    d.upright("sun", cell * 0.22, 0.0003, zt, "plastic", "orange", xy=sun, visual_only=True)
+    for k in range(4):
+        d.box(
+            f"sun_ray_{k}",
+            (cell * 0.4, cell * 0.05, 0.0002),
+            (*sun, zt),
+            "plastic",
+            "orange",
+            yaw=k * math.pi / 4,
+            visual_only=True,
+        )
+    # the keys under the display
+    x = sx1 + 0.012
+    dot(d, "power", 0.0065, x, w * 0.27, t, "red")
+    for k, sign in enumerate((-1, 1)):  # temperature down (-y) and up (+y)
+        c = (x + 0.004, sign * 0.0 - w * 0.12 + sign * 0.009)
+        dot(d, f"temp_key_{k}", 0.0068, *c, t, "blue")
+        d.box(
+            f"temp_sign_{k}",
+            (0.0008, 0.0035, 0.0003),
+            (*c, t + 0.0013),
+            "plastic",
+            "white",
+            visual_only=True,
+        )
+        if sign > 0:
+            d.box(
+                "temp_plus",
+                (0.0035, 0.0008, 0.0003),
+                (*c, t + 0.0013),
+                "plastic",
+                "white",
+                visual_only=True,
+            )
+    for row in range(3):
+        for col in (-1, 0, 1):
+            key = (x + 0.02 + row * 0.012, col * w * 0.28, t + 0.0005)
+            d.box(
+                f"key_{row}_{col}", (0.0035, w * 0.1, 0.0005), key, "rubber", keys, visual_only=True
+            )
+    return Traits((color,), "plastic", "cuboid")
+
+
 @generator(
     "presenter_clicker",
     size=(0.085, 0.14),
@@ -176,6 +338,52 @@ def presenter_clicker(d: Design) -> Traits:
     )
     dot(d, "laser_button", w * 0.16, lx * 0.27, 0, t, "red")
     d.rod("aperture", 0.002, 0.001, (lx / 2 + 0.0005, 0, t / 2), "glass", "red", visual_only=True)
+    return Traits((color,), "plastic", "elongated")
+
+
+@revised("presenter_clicker", 3)
+def presenter_clicker_3(d: Design) -> Traits:
+    """Revision 3: two big page keys marked with back and forward chevrons, a red laser key,
+    and a glossy laser nose at the front (the first read as a car key fob or a remote)."""
+    color = d.choice(["black", "black", "gray", "silver", "white", "blue"])
+    keys = d.choice(["gray", "black"] if color != "black" else ["gray", "silver"])
+    mark = "white" if keys in ("gray", "black") else "black"
+    lx, w, t = d.uniform(0.095, 0.115), d.uniform(0.03, 0.036), d.uniform(0.012, 0.016)
+    _pill(d, "body", lx, w, t, 0.0, "plastic", color, solid_fraction=0.6)
+    d.ellipsoid(
+        "nose",
+        (0.008, w / 2 - 0.001, t / 2 - 0.0005),
+        (lx / 2 - 0.004, 0, t / 2),
+        "plastic",
+        "black",
+        solid_fraction=0.6,
+    )
+    d.rod("laser", 0.0022, 0.001, (lx / 2 + 0.0038, 0, t / 2), "glass", "red", visual_only=True)
+    dot(d, "laser_button", w * 0.2, lx * 0.26, 0, t, "red")
+    for k in range(4):  # a star of rays on the laser key
+        d.box(
+            f"laser_ray_{k}",
+            (w * 0.12, 0.0005, 0.0002),
+            (lx * 0.26, 0, t + 0.0012),
+            "plastic",
+            "white",
+            yaw=k * math.pi / 4,
+            visual_only=True,
+        )
+    for k, (x, point) in enumerate(((lx * 0.06, -1), (-lx * 0.15, 1))):  # back, forward
+        d.upright(f"page_key_{k}", w * 0.36, 0.0014, t, "rubber", keys, xy=(x, 0))
+        tip = (x, point * w * 0.14, t + 0.0016)
+        for j, side in enumerate((-1, 1)):
+            d.segment(
+                f"chevron_{k}_{j}",
+                "box",
+                tip,
+                (x + side * w * 0.14, 0, t + 0.0016),
+                (0.0011, 0.0002),
+                "plastic",
+                mark,
+                visual_only=True,
+            )
     return Traits((color,), "plastic", "elongated")
 
 
@@ -257,6 +465,92 @@ def earbud_case(d: Design) -> Traits:
         (0, depth / 2 + 0.0003, z * 0.55),
         "plastic",
         led,
+        axis="y",
+        visual_only=True,
+    )
+    return Traits((color,), "plastic", "cuboid")
+
+
+@revised("earbud_case", 3)
+def earbud_case_3(d: Design) -> Traits:
+    """Revision 3: the case stands with its lid flipped open, the two earbuds seated in it
+    showing their heads and speaker grilles (the closed first case read as a round box or a
+    hat box)."""
+    color = d.choice(["white", "white", "white", "black", "gray", "blue", "pink"])
+    buds = color if color in ("white", "black") else d.choice(["white", "black"])
+    lx, depth = d.uniform(0.045, 0.055), d.uniform(0.021, 0.025)
+    hb, hl = d.uniform(0.032, 0.04), d.uniform(0.011, 0.014)
+    _pill(d, "base", lx, depth, hb, 0.0, "plastic", color, solid_fraction=0.5)
+    d.box(
+        "tray",
+        ((lx - depth) / 2 + depth * 0.3, depth / 2 - 0.0025, 0.0003),
+        (0, 0, hb + 0.0003),
+        "plastic",
+        "gray" if color == "white" else "black",
+        visual_only=True,
+    )
+    for k, sign in enumerate((-1, 1)):
+        c = (sign * lx * 0.2, 0.0005, hb + 0.004)
+        d.ellipsoid(f"bud_{k}", (0.0085, 0.0075, 0.0065), c, "plastic", buds)
+        d.ellipsoid(
+            f"grille_{k}",
+            (0.004, 0.0035, 0.0015),
+            (c[0] - sign * 0.002, c[1] + 0.001, c[2] + 0.0055),
+            "fabric",
+            "black" if buds == "white" else "gray",
+            visual_only=True,
+        )
+    # the lid flipped open on its hinge along the back edge (-y), leaning back a little
+    tilt = d.uniform(1.75, 1.95)
+    turn = axis_angle_quat((1, 0, 0), tilt)
+    hinge = (0.0, -depth / 2, hb)
+    core = max(lx - depth, 1e-4) / 2
+
+    def lid_point(x, y, z):  # a point of the closed lid (hinge frame) once opened
+        return (
+            hinge[0] + x,
+            hinge[1] + y * math.cos(tilt) - z * math.sin(tilt),
+            hinge[2] + y * math.sin(tilt) + z * math.cos(tilt),
+        )
+
+    d.add(
+        "lid",
+        "box",
+        (core, depth / 2, hl / 2),
+        lid_point(0, depth / 2, hl / 2),
+        "plastic",
+        color,
+        quat=turn,
+        solid_fraction=0.4,
+    )
+    for k, sign in enumerate((-1, 1)):
+        d.add(
+            f"lid_end_{k}",
+            "cylinder",
+            (depth / 2, hl / 2),
+            lid_point(sign * core, depth / 2, hl / 2),
+            "plastic",
+            color,
+            quat=quat_mul(turn, X_TO_Z),
+            solid_fraction=0.2,
+        )
+    d.add(
+        "lid_inside",
+        "box",
+        (core, depth / 2 - 0.002, 0.0003),
+        lid_point(0, depth / 2, -0.0003),
+        "plastic",
+        "gray" if color == "white" else "black",
+        quat=turn,
+        visual_only=True,
+    )
+    d.rod(
+        "led",
+        0.0012,
+        0.0006,
+        (0, depth / 2 + 0.0003, hb * 0.55),
+        "plastic",
+        d.choice(["green", "white", "orange"]),
         axis="y",
         visual_only=True,
     )
@@ -380,6 +674,13 @@ def mini_sculpture_2(d: Design) -> Traits:
     return _sculpture(d, "bust")
 
 
+@revised("mini_sculpture", 3)
+def mini_sculpture_3(d: Design) -> Traits:
+    """Revision 3: the ring (read as a finger ring) becomes a standing figure with its arms
+    raised; the bust and the other kinds are as in revision 2."""
+    return _sculpture_3(d)
+
+
 def _sculpture(d: Design, fifth: str) -> Traits:
     """A small sculpture on a plinth: a figure, a cairn, a twisted stack, a ring, or the
     ``fifth`` kind (an orb or a bust)."""
@@ -447,6 +748,104 @@ def _sculpture(d: Design, fifth: str) -> Traits:
         d.upright("cup", r * 0.45, 0.004, ph, *look, solid_fraction=fill)
         d.sphere("orb", r, (0, 0, ph + 0.002 + r), *look, solid_fraction=fill)
         shape = "sphere"
+    else:  # a bust facing +x
+        k = d.uniform(0.9, 1.2)
+        d.ellipsoid(
+            "chest",
+            (0.011 * k, 0.028 * k, 0.015 * k),
+            (0, 0, ph + 0.014 * k),
+            *look,
+            solid_fraction=fill,
+        )
+        neck = ph + 0.025 * k
+        d.upright("neck", 0.0065 * k, 0.01 * k, neck, *look, solid_fraction=fill)
+        head = (0.0015 * k, 0, neck + 0.008 * k + 0.0145 * k)
+        d.ellipsoid("head", (0.012 * k, 0.0105 * k, 0.0145 * k), head, *look, solid_fraction=fill)
+        nose = (head[0] + 0.0115 * k, 0, head[2] - 0.001 * k)
+        d.ellipsoid("nose", (0.003 * k, 0.002 * k, 0.004 * k), nose, *look, solid_fraction=fill)
+        shape = "irregular"
+    return Traits((color, plinth), material, shape)
+
+
+def _sculpture_3(d: Design) -> Traits:
+    """``_sculpture`` with a bust, and a standing figure with raised arms for the ring."""
+    material = d.choice(["stone", "stone", "ceramic", "metal", "wood"])
+    color = d.choice(
+        {
+            "stone": ["white", "gray", "black", "beige"],
+            "ceramic": ["white", "blue", "black", "green"],
+            "metal": ["golden", "silver", "black"],
+            "wood": ["brown", "beige"],
+        }[material]
+    )
+    fill = 0.3 if material == "metal" else 1.0
+    plinth_mat = d.choice(["wood", "stone"])
+    plinth = d.choice(["brown", "black"] if plinth_mat == "wood" else ["black", "white", "gray"])
+    pw, ph = d.uniform(0.035, 0.055), d.uniform(0.012, 0.022)
+    if d.rng.random() < 0.5:
+        d.slab("plinth", (pw / 2, pw / 2, ph / 2), 0.0, plinth_mat, plinth)
+    else:
+        d.upright("plinth", pw / 2, ph, 0.0, plinth_mat, plinth)
+    look = (material, color)
+    kind = d.choice(["figure", "cairn", "twist", "raised", "bust"])
+    if kind == "figure":
+        rz, rh = d.uniform(0.028, 0.038), d.uniform(0.009, 0.012)
+        d.ellipsoid("torso", (rz * 0.42, rz * 0.3, rz), (0, 0, ph + rz), *look, solid_fraction=fill)
+        d.upright("neck", rh * 0.45, rh * 0.6, ph + 2 * rz - 0.002, *look, solid_fraction=fill)
+        d.sphere("head", rh, (0, 0, ph + 2 * rz + rh * 0.5), *look, solid_fraction=fill)
+        shape = "irregular"
+    elif kind == "cairn":
+        z, r = ph, pw * d.uniform(0.42, 0.5)
+        count = d.choice([3, 4, 5])
+        k = 0
+        while k < count or (z < 0.064 and k < 7):  # tall enough to read as a cairn
+            rz = r * d.uniform(0.4, 0.5)
+            d.ellipsoid(
+                f"pebble_{k}", (r, r * 0.85, rz), (0, 0, z + rz), *look, solid_fraction=fill
+            )
+            z, r = z + 2 * rz * 0.92, r * d.uniform(0.72, 0.85)
+            k += 1
+        shape = "irregular"
+    elif kind == "twist":
+        side, slices = pw * d.uniform(0.28, 0.36), d.choice([6, 7, 8, 9])
+        th, turn = d.uniform(0.008, 0.011), d.uniform(0.12, 0.2)
+        for k in range(slices):
+            half = (side * (1 - 0.04 * k), side * (1 - 0.04 * k), th / 2)
+            d.slab(f"slice_{k}", half, ph + k * th, *look, yaw=k * turn, solid_fraction=fill)
+        shape = "elongated"
+    elif kind == "raised":  # a figure standing on its legs, both arms raised in a V
+        k = d.uniform(0.9, 1.15)
+        hip, look_kw = ph + 0.034 * k, dict(solid_fraction=fill)
+        for j, sign in enumerate((-1, 1)):
+            foot = (0.002 * k, sign * 0.006 * k, ph + 0.003 * k)
+            knee = (0.0045 * k, sign * 0.0055 * k, ph + 0.018 * k)
+            d.segment(f"shin_{j}", "capsule", foot, knee, 0.0036 * k, *look, **look_kw)
+            d.segment(
+                f"leg_{j}",
+                "capsule",
+                knee,
+                (0, sign * 0.0045 * k, hip),
+                0.0042 * k,
+                *look,
+                **look_kw,
+            )
+        d.ellipsoid(
+            "torso", (0.0065 * k, 0.0105 * k, 0.0135 * k), (0, 0, hip + 0.01 * k), *look, **look_kw
+        )
+        shoulder = hip + 0.019 * k
+        d.upright("neck", 0.0028 * k, 0.005 * k, shoulder - 0.001 * k, *look, **look_kw)
+        d.sphere("head", 0.0062 * k, (0.0005 * k, 0, shoulder + 0.009 * k), *look, **look_kw)
+        spread = d.uniform(0.3, 0.6)
+        for j, sign in enumerate((-1, 1)):
+            root = (0, sign * 0.0085 * k, shoulder - 0.0015 * k)
+            reach = 0.026 * k
+            hand = (
+                0.003 * k,
+                root[1] + sign * reach * math.sin(spread),
+                root[2] + reach * math.cos(spread),
+            )
+            d.segment(f"arm_{j}", "capsule", root, hand, 0.0027 * k, *look, **look_kw)
+        shape = "irregular"
     else:  # a bust facing +x
         k = d.uniform(0.9, 1.2)
         d.ellipsoid(

@@ -5,9 +5,9 @@ from __future__ import annotations
 import math
 
 from ..design import Design, Traits
-from ..parts import axis_angle_quat
+from ..parts import X_TO_Z, axis_angle_quat, quat_mul
 from ..textures import Texture
-from .registry import generator
+from .registry import generator, revised
 
 
 def _stem(d: Design, top: float, length: float, leaf: bool) -> None:
@@ -134,3 +134,67 @@ def beverage_bottle(d: Design) -> Traits:
     d.upright("neck", 0.012, h - neck_z - 0.014, neck_z, "plastic", color)
     d.upright("cap", 0.015, 0.016, h - 0.016, "plastic", cap)
     return Traits((color, cap), "plastic", "cylinder")
+
+
+#: Soft drinks: (liquid seen through the clear bottle, label, ink, word pattern, caps).
+SOFT_DRINKS = (
+    ("brown", "red", "white", "wrap_cola", ("red", "red", "white", "black")),
+    ("brown", "red", "white", "wrap_soda", ("red", "white")),
+    ("orange", "blue", "white", "wrap_soda", ("orange", "blue", "white")),
+    ("green", "yellow", "green", "wrap_lemonade", ("green", "yellow", "white")),
+    ("transparent", "blue", "white", "wrap_soda", ("blue", "white")),
+)
+
+
+@revised("beverage_bottle", 3)
+def beverage_bottle_3(d: Design) -> Traits:
+    """Revision 3: a plastic soft-drink bottle: the drink filling it to the shoulder (cola
+    brown, orange, lemon green), a wide wrap-round label printed COLA or SODA, ribs above
+    and below it, a clear shoulder and short neck with its ring, and a ribbed screw cap
+    (the first, a slim coloured bottle with a long neck, read as a beer, wine or hot sauce
+    bottle)."""
+    liquid, label, ink, word, caps = d.choice(SOFT_DRINKS)
+    cap = d.choice(list(caps))
+    r = d.uniform(0.03, 0.034)
+    h = d.uniform(0.2, 0.235)
+    body_h = h * 0.6
+    d.upright("body", r, body_h, 0.0, "plastic", liquid, solid_fraction=0.95)
+    d.upright("base_ring", r * 0.93, 0.004, 0.0, "plastic", liquid, visual_only=True)
+    label_h = body_h * 0.42
+    label_z = body_h * 0.4
+    quat = quat_mul(axis_angle_quat((0, 0, 1), 0.5), X_TO_Z)  # the word towards the viewer
+    d.add(
+        "label",
+        "cylinder",
+        (r + 0.001, label_h / 2),
+        (0, 0, label_z + label_h / 2),
+        "paper",
+        label,
+        quat=quat,
+        visual_only=True,
+        texture=Texture(word, (ink,)),
+    )
+    for k, z in enumerate((body_h * 0.12, body_h * 0.24, body_h * 0.9)):
+        d.upright(f"rib_{k}", r + 0.0007, 0.0025, z, "plastic", liquid, visual_only=True)
+    shoulder = h * 0.2
+    d.ellipsoid(
+        "shoulder", (r, r, shoulder), (0, 0, body_h), "plastic", "transparent", solid_fraction=0.3
+    )
+    neck_z = body_h + shoulder * 0.85
+    cap_h = 0.016
+    d.upright("neck", 0.0125, h - neck_z - cap_h, neck_z, "plastic", "transparent")
+    d.upright("neck_ring", 0.0165, 0.0018, h - cap_h - 0.005, "plastic", "transparent")
+    d.upright("cap", 0.0148, cap_h, h - cap_h, "plastic", cap)
+    for k in range(12):
+        a = 2 * math.pi * k / 12
+        d.box(
+            f"cap_rib_{k}",
+            (0.0006, 0.0009, cap_h * 0.4),
+            (0.0149 * math.cos(a), 0.0149 * math.sin(a), h - cap_h * 0.5),
+            "plastic",
+            cap,
+            yaw=a,
+            visual_only=True,
+        )
+    colors = (liquid, label) if liquid != "transparent" else (label, "transparent")
+    return Traits(colors, "plastic", "cylinder")

@@ -5,6 +5,7 @@ from __future__ import annotations
 import math
 
 from ..design import Design, Traits
+from ..parts import IDENTITY as IDENTITY_Q
 from ..parts import X_TO_Z, axis_angle_quat, quat_mul
 from ..textures import Texture
 from .registry import generator, revised
@@ -662,3 +663,265 @@ def cheese_sticks(d: Design) -> Traits:
             solid_fraction=0.1,
         )
     return Traits((cheese, wrap), "organic", "elongated")
+
+
+@revised("cheese_sticks", 3)
+def cheese_sticks_3(d: Design) -> Traits:
+    """Revision 3: breaded mozzarella sticks, crumb-flecked, one broken in two with the
+    melted cheese stretching in strings across the break (wrapped sticks read as a glue
+    stick or a tube of ointment)."""
+    crumb = d.choice(["golden", "golden", "orange", "brown"])
+    cheese = d.choice(["white", "white", "yellow"])
+    fleck = "golden" if crumb == "brown" else "brown"
+    r, length = d.uniform(0.0095, 0.0115), d.uniform(0.075, 0.09)
+    whole = d.choice([1, 2, 2])
+    for k in range(whole):  # whole sticks side by side behind
+        y = -(k + 1) * 2 * r - 0.002 * k
+        _breaded(d, f"stick_{k}", -0.004 * k, y, r, length, crumb, fleck)
+    gap = d.uniform(0.02, 0.026)
+    half = (length - gap) / 2 + 0.004
+    for k, sign in enumerate((-1, 1)):  # the broken one in front
+        x = sign * (gap / 2 + half / 2)
+        _breaded(d, f"half_{k}", x, 0.0, r, half, crumb, fleck)
+        face = (sign * (gap / 2 + 0.0006), 0.0, r)
+        d.add(
+            f"break_{k}", "cylinder", (r * 0.8, 0.0008), face, "organic", cheese, visual_only=True
+        )
+    pulls = ((-0.45, 0.1, 0.4), (0.0, 0.45, 0.6), (0.4, 0.0, 0.3), (0.1, -0.35, 0.25))
+    for k, (dy, dz, sag) in enumerate(pulls):
+        p0 = (-gap / 2 - 0.001, dy * r, r + dz * r)
+        p2 = (gap / 2 + 0.001, dy * r * 0.8, r + dz * r * 0.6)
+        mid = (0.0, dy * r * 1.2, r + dz * r - sag * r)
+        thick = r * d.uniform(0.18, 0.26)
+        d.segment(f"pull_{k}", "capsule", p0, mid, thick, "organic", cheese, visual_only=True)
+        d.segment(f"pull_end_{k}", "capsule", mid, p2, thick, "organic", cheese, visual_only=True)
+    return Traits((crumb, cheese), "organic", "elongated")
+
+
+def _breaded(
+    d: Design, name: str, x: float, y: float, r: float, length: float, crumb: str, fleck: str
+) -> None:
+    """A breaded stick lying along x, flecked with toasted crumbs."""
+    d.rod(name, r, length, (x, y, r), "organic", crumb, capsule=True)
+    for k in range(int(length / 0.0025)):
+        t, a = d.uniform(-0.45, 0.45), d.uniform(-1.2, 1.2)
+        pos = (x + t * length * 0.9, y + r * math.sin(a), r + r * math.cos(a))
+        d.sphere(f"{name}_crumb_{k}", 0.0009, pos, "organic", fleck, visual_only=True)
+
+
+@revised("bread", 3)
+def bread_3(d: Design) -> Traits:
+    """Revision 3: a sliced loaf showing its crumb, with slices cut off lying in front, or
+    a long baguette with raised pale slashes (the oval loaves read as potatoes and kiwis)."""
+    crust = d.choice(["brown", "golden", "golden"])
+    crumb = d.choice(["beige", "white"])
+    if d.rng.random() < 0.65:
+        lx, ly, hz = d.uniform(0.1, 0.13), d.uniform(0.06, 0.068), d.uniform(0.045, 0.055)
+        d.box(
+            "body",
+            (lx / 2, ly / 2, hz / 2),
+            (-0.02, 0, hz / 2),
+            "organic",
+            crust,
+            solid_fraction=0.3,
+        )
+        dome = ly / 2
+        d.add(
+            "crown",
+            "ellipsoid",
+            (lx / 2, dome, dome * 0.6),
+            (-0.02, 0, hz),
+            "organic",
+            crust,
+            solid_fraction=0.3,
+        )
+        face = lx / 2 - 0.02 + 0.0008  # the cut end: crumb inside a rim of crust
+        d.box(
+            "crumb",
+            (0.0008, ly / 2 - 0.004, hz / 2 - 0.002),
+            (face, 0, hz / 2 + 0.002),
+            "organic",
+            crumb,
+            visual_only=True,
+        )
+        d.add(
+            "crumb_dome",
+            "ellipsoid",
+            (0.0009, dome - 0.004, dome * 0.6 - 0.004),
+            (face, 0, hz),
+            "organic",
+            crumb,
+            visual_only=True,
+        )
+        slices = d.choice([1, 2, 2])
+        t = d.uniform(0.011, 0.014)
+        for k in range(slices):  # lying flat in front of the cut end, a little fanned
+            cx = face + 0.004 + hz / 2 + k * 0.012
+            cy = -0.006 + k * 0.01
+            z0 = k * t * 0.95
+            yaw = d.uniform(-0.15, 0.15)
+            d.box(
+                f"slice_{k}",
+                (hz / 2, ly / 2, t / 2),
+                (cx, cy, z0 + t / 2),
+                "organic",
+                crust,
+                yaw=yaw,
+                solid_fraction=0.3,
+            )
+            off = (cx + hz / 2 * math.cos(yaw), cy + hz / 2 * math.sin(yaw), z0 + t / 2)
+            d.add(
+                f"slice_top_{k}",
+                "cylinder",
+                (dome, t / 2),
+                off,
+                "organic",
+                crust,
+                quat=quat_mul(_yaw(yaw), X_TO_Z),
+                solid_fraction=0.3,
+            )
+            d.box(
+                f"slice_crumb_{k}",
+                (hz / 2 - 0.002, ly / 2 - 0.003, 0.0006),
+                (cx, cy, z0 + t + 0.0006),
+                "organic",
+                crumb,
+                yaw=yaw,
+                visual_only=True,
+            )
+            d.add(
+                f"slice_crumb_top_{k}",
+                "cylinder",
+                (dome - 0.003, 0.0006),
+                (off[0], off[1], z0 + t + 0.0006),
+                "organic",
+                crumb,
+                quat=quat_mul(_yaw(yaw), X_TO_Z),
+                visual_only=True,
+            )
+        return Traits((crust, crumb), "organic", "cuboid")
+    crumb = "beige"
+    a, b = d.uniform(0.1, 0.115), d.uniform(0.022, 0.027)
+    c = b
+    d.rod("baguette", b, 2 * a, (0, 0, c), "organic", crust, capsule=True, solid_fraction=0.3)
+    slashes = int(d.rng.integers(4, 6))
+    for k in range(slashes):
+        x = (k - (slashes - 1) / 2) * a * 1.55 / slashes
+        radii = (a * 0.75 / slashes, b * 0.32, 0.0035)
+        d.add(
+            f"slash_{k}",
+            "ellipsoid",
+            radii,
+            (x, 0, 2 * c - 0.0016),
+            "organic",
+            crumb,
+            quat=_yaw(0.55),
+            visual_only=True,
+        )
+    return Traits((crust,), "organic", "elongated")
+
+
+@revised("potato", 3)
+def potato_3(d: Design) -> Traits:
+    """Revision 3: an oblong, knobbly tuber, flattened and lumpy, with sunken eyes and
+    earthy specks, in earthy skins (a round red one read as an apple or a tomato; a
+    lemon-yellow skin is gone)."""
+    color = d.choice(["brown", "brown", "brown", "beige", "beige", "red"])
+    a = d.uniform(0.038, 0.056)
+    b, c = min(a * d.uniform(0.55, 0.66), 0.032), a * d.uniform(0.42, 0.5)
+    d.ellipsoid("tuber", (a, b, c), (0, 0, c), "organic", color)
+    for k, (fx, fy) in enumerate(((-0.55, 0.25), (0.5, -0.3), (0.1, 0.45))):
+        lump = (a * d.uniform(0.38, 0.5), b * d.uniform(0.6, 0.75), c * d.uniform(0.75, 0.9))
+        d.ellipsoid(f"knob_{k}", lump, (fx * a, fy * b, lump[2] + 0.001), "organic", color)
+    eye = "brown" if color != "brown" else "black"
+    speck = "beige" if color in ("red", "brown") else "brown"
+    _dots(d, "eye", (0, 0, c), (a * 0.97, b * 0.97, c * 0.97), 7, 0.0022, eye)
+    _dots(d, "speck", (0, 0, c), (a, b, c), 14, 0.001, speck)
+    return Traits((color,), "organic", "irregular")
+
+
+@revised("peach", 3)
+def peach_3(d: Design) -> Traits:
+    """Revision 3: a cleft, heart-shaped peach with a red blush over its yellow-orange skin,
+    a deep dark crease from the stalk and a slender leaf (a plain orange ball read as an
+    orange)."""
+    skin = d.choice(["orange", "orange", "yellow"])
+    blush = "red"
+    r = d.uniform(0.0295, 0.035)
+    h = r * d.uniform(0.9, 1.0)
+    for k, s in enumerate((-1, 1)):  # two cheeks either side of the crease
+        d.ellipsoid(f"cheek_{k}", (r * 0.96, r * 0.6, h), (0, s * r * 0.38, h), "organic", skin)
+    for k, s in enumerate((-1, 1)):  # a blush on each cheek, strongest facing the sun
+        shift = r * (0.1 if s > 0 else 0.06)
+        centre = (shift * 0.8, s * (r * 0.36 + shift * 0.5), h + shift * 0.4)
+        radii = (r * 0.9, r * 0.56, h * 0.93)
+        d.ellipsoid(f"blush_{k}", radii, centre, "organic", blush, visual_only=True)
+    crease = "orange" if skin == "yellow" else "red"
+    d.ellipsoid(
+        "suture", (r * 0.97, 0.0016, h * 1.005), (0, 0, h), "organic", crease, visual_only=True
+    )
+    _stalk(d, 2 * h - 0.002, d.uniform(0.006, 0.009), 0.15)
+    if d.rng.random() < 0.7:  # a long narrow peach leaf
+        yaw = d.uniform(-0.6, 0.6)
+        pos = (-0.016 * math.cos(yaw), -0.016 * math.sin(yaw), 2 * h + 0.002)
+        d.add(
+            "peach_leaf",
+            "ellipsoid",
+            (0.022, 0.0065, 0.0012),
+            pos,
+            "organic",
+            "green",
+            quat=quat_mul(_yaw(yaw), axis_angle_quat((0, 1, 0), 0.25)),
+        )
+    return Traits((skin, blush), "organic", "sphere")
+
+
+@revised("candy", 3)
+def candy_3(d: Design) -> Traits:
+    """Revision 3: a sweet in a shiny twist wrapper whose pleated ends fan out upright like
+    a bow tie, or a red-and-white peppermint swirl in a clear twist wrapper (the first, its
+    fans lying flat, read as a vase)."""
+    if d.rng.random() < 0.4:  # a peppermint lying flat, its swirl on top
+        stripe = d.choice(["red", "red", "green"])
+        r, t = d.uniform(0.011, 0.014), d.uniform(0.0095, 0.011)
+        d.upright("mint", r, t, 0.0, "organic", "white")
+        for k in range(8):
+            a = 2 * math.pi * k / 8
+            pos = (r * 0.5 * math.cos(a), r * 0.5 * math.sin(a), t + 0.0003)
+            half = (r * 0.46, r * 0.15, 0.0003)
+            d.box(f"swirl_{k}", half, pos, "organic", stripe, yaw=a + 0.45, visual_only=True)
+        _bow_ends(d, r, r, t / 2, "transparent", flat=True)
+        return Traits(("white", stripe), "organic", "disk")
+    wrapper = d.choice(WRAPPERS[:-2] + ["golden", "silver"])
+    stripe = d.choice([c for c in PRINTS if c != wrapper])
+    a, b = d.uniform(0.012, 0.016), d.uniform(0.009, 0.011)
+    c = b
+    d.ellipsoid("sweet", (a, b, c), (0, 0, c), "organic", wrapper, solid_fraction=1.6)
+    d.ellipsoid(
+        "stripe", (a * 0.28, b * 1.03, c * 1.03), (0, 0, c), "plastic", stripe, visual_only=True
+    )
+    _bow_ends(d, a, b, c, wrapper)
+    return Traits((wrapper, stripe), "organic", "ellipsoid")
+
+
+def _bow_ends(d: Design, a: float, b: float, c: float, color: str, flat: bool = False) -> None:
+    """The twisted ends of a sweet's wrapper at x = +-a, each a pinch and a pleated fan,
+    standing across the sweet like a bow tie (or lying ``flat`` on the table)."""
+    fan = d.uniform(0.007, 0.009)
+    for k, sign in enumerate((-1, 1)):
+        d.rod(f"twist_{k}", 0.0022, 0.006, (sign * (a + 0.0015), 0, c), "plastic", color)
+        for j, tilt in enumerate((-0.5, -0.25, 0.0, 0.25, 0.5)):  # pleats in a fan
+            spread = axis_angle_quat((0, 0, 1), sign * tilt) if flat else IDENTITY_Q
+            lean = IDENTITY_Q if flat else axis_angle_quat((1, 0, 0), tilt)
+            reach = a + 0.0042 + fan / 2
+            pos = (sign * reach, math.tan(tilt) * fan / 2 if flat else 0.0, c)
+            half = (fan / 2, b * 0.8, 0.0006) if flat else (fan / 2, 0.0006, c * 0.85)
+            d.add(
+                f"pleat_{k}_{j}",
+                "box",
+                half,
+                pos,
+                "plastic",
+                color,
+                quat=quat_mul(spread, lean),
+            )

@@ -3,8 +3,9 @@
 from __future__ import annotations
 
 from ..design import Design, Traits
+from ..textures import Texture
 from .desktop import BRIGHT
-from .registry import generator
+from .registry import generator, revised
 
 
 @generator("sponge", size=(0.07, 0.12), synonyms=("sponge", "kitchen sponge", "scrub sponge"))
@@ -15,6 +16,40 @@ def sponge(d: Design) -> Traits:
     foam, scour = d.uniform(0.02, 0.03), 0.006
     d.box("foam", (lx / 2, ly / 2, foam / 2), (0, 0, foam / 2), "foam", color)
     d.box("scourer", (lx / 2, ly / 2, scour / 2), (0, 0, foam + scour / 2), "fabric", pad)
+    return Traits((color, pad), "fabric", "cuboid")
+
+
+@revised("sponge", 3)
+def sponge_3(d: Design) -> Traits:
+    """Revision 3: a thick block of foam showing its pores all round, under a thin scouring
+    pad of the same outline (the first, two plain slabs, was not named)."""
+    color = d.choice(["yellow", "yellow", "yellow", "pink", "blue", "orange"])
+    pad = d.choice(["green", "green", "green", "blue", "gray"])
+    lx, ly = d.uniform(0.09, 0.11), d.uniform(0.06, 0.07)
+    foam, scour = d.uniform(0.028, 0.034), d.uniform(0.005, 0.007)
+    d.box("foam", (lx / 2, ly / 2, foam / 2), (0, 0, foam / 2), "foam", color)
+    d.box("scourer", (lx / 2, ly / 2, scour / 2), (0, 0, foam + scour / 2), "fabric", pad)
+    pores = Texture("pores")
+    skin = 0.0003
+    for k, s in enumerate((-1, 1)):  # the pores, on each side (drawn at its own shape)
+        d.box(
+            f"pores_x{k}",
+            (skin, ly / 2, foam / 2),
+            (s * (lx / 2 + skin), 0, foam / 2),
+            "foam",
+            color,
+            visual_only=True,
+            texture=pores,
+        )
+        d.box(
+            f"pores_y{k}",
+            (lx / 2, skin, foam / 2),
+            (0, s * (ly / 2 + skin), foam / 2),
+            "foam",
+            color,
+            visual_only=True,
+            texture=pores,
+        )
     return Traits((color, pad), "fabric", "cuboid")
 
 

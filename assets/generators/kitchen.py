@@ -5,7 +5,9 @@ from __future__ import annotations
 import math
 
 from ..design import Design, Traits
-from .registry import generator
+from ..parts import X_TO_Z, axis_angle_quat, quat_mul
+from ..textures import Texture
+from .registry import generator, revised
 
 CERAMIC_COLORS = ["white", "white", "blue", "red", "green", "yellow", "black", "beige", "pink"]
 
@@ -53,6 +55,70 @@ def spice_jar(d: Design) -> Traits:
     d.upright("jar", r, h - 0.018, 0.0, "glass", "transparent", solid_fraction=0.35)
     d.upright("spice", r - 0.002, (h - 0.02) * 0.6, 0.002, "organic", content, visual_only=True)
     d.upright("lid", r + 0.0015, 0.018, h - 0.018, "plastic", lid)
+    return Traits(("transparent", lid), "glass", "cylinder")
+
+
+#: The spice a jar's contents show, by their colour: the word its label prints.
+SPICE_WORDS = {
+    "red": ("wrap_paprika",),
+    "brown": ("wrap_cinnamon", "wrap_pepper"),
+    "green": ("wrap_oregano",),
+    "orange": ("wrap_curry",),
+    "beige": ("wrap_ginger",),
+}
+
+
+@revised("spice_jar", 3)
+def spice_jar_3(d: Design) -> Traits:
+    """Revision 3: a small glass jar filled to the shoulder with ground spice, a printed
+    label round it naming the spice (PAPRIKA, CINNAMON, OREGANO ...), under a screw lid
+    whose top is a shaker with its sifter holes (the first, a tall glass half full of
+    brown under a lid, read as a glass of iced coffee)."""
+    lid = d.choice(["red", "black", "silver", "white", "green"])
+    content = d.choice(list(SPICE_WORDS))
+    label = d.choice([c for c in ("white", "white", "beige", "black") if c != content])
+    ink = (
+        "white"
+        if label == "black"
+        else d.choice([c for c in ("red", "green", "brown", "black") if c != content])
+    )
+    r = d.uniform(0.02, 0.024)
+    h = d.uniform(0.08, 0.095)
+    lid_h = d.uniform(0.014, 0.018)
+    jar = h - lid_h - 0.004
+    d.upright("jar", r, jar, 0.0, "glass", "transparent", solid_fraction=0.35)
+    d.upright("spice", r - 0.0015, jar * 0.85, 0.0025, "organic", content, visual_only=True)
+    d.upright("neck", r * 0.9, 0.004, jar, "glass", "transparent")
+    word = Texture(d.choice(SPICE_WORDS[content]), (ink,))
+    quat = quat_mul(axis_angle_quat((0, 0, 1), 0.5), X_TO_Z)  # the word towards the viewer
+    label_h = jar * 0.5
+    d.add(
+        "label",
+        "cylinder",
+        (r + 0.0008, label_h / 2),
+        (0, 0, jar * 0.2 + label_h / 2),
+        "paper",
+        label,
+        quat=quat,
+        visual_only=True,
+        texture=word,
+    )
+    d.upright("lid", r + 0.0015, lid_h, h - lid_h, "plastic", lid)
+    top = "white" if lid != "white" else "gray"
+    d.upright("sifter", r * 0.8, 0.0008, h, "plastic", top, visual_only=True)
+    for k in range(7):
+        a = 2 * math.pi * k / 6
+        xy = (0.0, 0.0) if k == 6 else (r * 0.45 * math.cos(a), r * 0.45 * math.sin(a))
+        d.upright(
+            f"sifter_hole_{k}",
+            0.0017,
+            0.0004,
+            h + 0.0008,
+            "plastic",
+            "black",
+            xy=xy,
+            visual_only=True,
+        )
     return Traits(("transparent", lid), "glass", "cylinder")
 
 

@@ -7,7 +7,7 @@ import math
 from ..design import Design, Traits
 from ..parts import axis_angle_quat
 from .kitchen import CERAMIC_COLORS
-from .registry import generator
+from .registry import generator, revised
 
 GRIPS = ["black", "red", "green", "blue", "yellow", "orange", "white", "brown"]
 
@@ -93,6 +93,142 @@ def peeler(d: Design) -> Traits:
     return Traits((color, "silver"), material, "elongated")
 
 
+@revised("peeler", 3)
+def peeler_3(d: Design) -> Traits:
+    """Revision 3: lying flat, a Y peeler (a broad handle, a yoke spreading wider than it and
+    a slotted blade across the yoke's tips) or a swivel peeler (a slotted blade between two
+    rails, a pointed eye-remover at the tip); the first, arms and blade at odd heights,
+    was not named at all."""
+    color = d.choice(GRIPS)
+    material = "wood" if color == "brown" else "plastic"
+    thick = d.uniform(0.009, 0.012)
+    z = thick / 2
+    if d.rng.random() < 0.6:  # a Y peeler, the yoke at +x
+        handle, hw = d.uniform(0.085, 0.105), d.uniform(0.011, 0.014)
+        _pill(d, "handle", handle, 2 * hw, thick, material, color, x=-handle / 2)
+        d.upright(
+            "hang_hole",
+            0.0045,
+            0.0006,
+            thick,
+            "plastic",
+            "black",
+            xy=(-handle + 0.013, 0),
+            visual_only=True,
+        )
+        reach, half = d.uniform(0.04, 0.048), d.uniform(0.03, 0.036)
+        yoke = "silver" if d.rng.random() < 0.4 else color
+        yoke_mat = "metal" if yoke == "silver" else material
+        for k, sign in enumerate((-1, 1)):
+            knee = (reach * 0.45, sign * half * 0.85, z)
+            d.segment(
+                f"yoke_{k}",
+                "box",
+                (-0.004, sign * hw * 0.4, z),
+                knee,
+                (0.0035, z * 0.8),
+                yoke_mat,
+                yoke,
+            )
+            d.segment(
+                f"yoke_tip_{k}",
+                "box",
+                knee,
+                (reach, sign * half, z),
+                (0.0035, z * 0.8),
+                yoke_mat,
+                yoke,
+            )
+            d.upright(
+                f"rivet_{k}", 0.0032, thick * 0.9, 0.0, "metal", "silver", xy=(reach, sign * half)
+            )
+        d.box("blade", (0.0055, half - 0.002, 0.0009), (reach, 0, z), "metal", "silver")
+        d.box(
+            "slot",
+            (0.0009, half * 0.8, 0.0002),
+            (reach, 0, z + 0.001),
+            "metal",
+            "black",
+            visual_only=True,
+        )
+        for k, sign in enumerate((-1, 1)):
+            d.box(
+                f"edge_{k}",
+                (0.0004, half * 0.85, 0.0002),
+                (reach + sign * 0.004, 0, z + 0.0009),
+                "metal",
+                "gray",
+                visual_only=True,
+            )
+        return Traits((color, "silver"), material, "T-shape")
+    handle, hw = d.uniform(0.09, 0.11), d.uniform(0.01, 0.012)
+    _pill(d, "handle", handle, 2 * hw, thick, material, color, x=-handle / 2)
+    d.upright(
+        "hang_hole",
+        0.004,
+        0.0006,
+        thick,
+        "plastic",
+        "black",
+        xy=(-handle + 0.012, 0),
+        visual_only=True,
+    )
+    frame, half = d.uniform(0.055, 0.065), d.uniform(0.009, 0.011)
+    for k, sign in enumerate((-1, 1)):
+        d.box(
+            f"rail_{k}",
+            (frame / 2, 0.002, z * 0.7),
+            (frame / 2, sign * half, z * 0.7),
+            "metal",
+            "silver",
+        )
+    d.segment(
+        "eye_tip",
+        "box",
+        (frame, 0, z * 0.7),
+        (frame + 0.014, 0, z * 0.7),
+        (half + 0.002, z * 0.7),
+        "metal",
+        "silver",
+    )
+    d.ellipsoid(
+        "tip", (0.008, half + 0.002, z * 0.7), (frame + 0.014, 0, z * 0.7), "metal", "silver"
+    )
+    d.box(
+        "blade",
+        (frame / 2 - 0.005, half - 0.002, 0.0009),
+        (frame / 2, 0, z * 0.7),
+        "metal",
+        "silver",
+    )
+    d.box(
+        "slot",
+        (frame / 2 - 0.009, 0.0009, 0.0002),
+        (frame / 2, 0, z * 0.7 + 0.001),
+        "metal",
+        "black",
+        visual_only=True,
+    )
+    return Traits((color, "silver"), material, "elongated")
+
+
+def _pill(d: Design, name: str, length, width, height, material, color, x=0.0) -> None:
+    """A flat handle of rounded ends along x, centred at x, resting on z = 0."""
+    core = max(length - width, 1e-4) / 2
+    d.stadium(
+        name,
+        core,
+        width / 2,
+        0.0,
+        height,
+        material,
+        color,
+        xy=(x, 0.0),
+        solid_fraction=1.0,
+        end_fill=0.5,
+    )
+
+
 @generator("garlic_press", size=(0.15, 0.23), synonyms=("garlic press", "garlic crusher"))
 def garlic_press(d: Design) -> Traits:
     metal = d.choice(["silver", "silver", "gray"])
@@ -154,6 +290,65 @@ def wire_cutters(d: Design) -> Traits:
         )
     d.upright("pivot", 0.0065, thick, 0.0, "metal", "silver", xy=(pivot, 0))
     return Traits((grip, "silver"), "metal", "irregular")
+
+
+@revised("wire_cutters", 3)
+def wire_cutters_3(d: Design) -> Traits:
+    """Revision 3: diagonal cutters biting a length of insulated wire: a short pointed head
+    of two bevelled jaws, a V spring between the handles and dipped two-tone grips (the
+    first, long straight jaws, read as pliers or a can opener)."""
+    grip = d.choice(["red", "red", "yellow", "blue", "orange", "green"])
+    tip = d.choice(["black", "gray"])
+    metal = d.choice(["silver", "silver", "gray"])
+    length, spread = d.uniform(0.15, 0.18), d.uniform(0.05, 0.065)
+    thick = d.uniform(0.011, 0.013)
+    z = thick / 2
+    jaw = d.uniform(0.024, 0.028)
+    pivot = length / 2 - jaw
+    d.upright("boss", 0.0105, thick, 0.0, "metal", metal, xy=(pivot, 0))
+    d.upright("pivot", 0.004, thick + 0.001, 0.0, "metal", "gray", xy=(pivot, 0))
+    for k, sign in enumerate((-1, 1)):
+        d.ellipsoid(
+            f"jaw_{k}",
+            (jaw * 0.62, 0.0068, z * 0.85),
+            (pivot + jaw * 0.4, sign * 0.0042, z),
+            "metal",
+            metal,
+        )
+    d.box(
+        "edge",
+        (jaw * 0.42, 0.0004, 0.0002),
+        (pivot + jaw * 0.55, 0, thick - 0.0006),
+        "metal",
+        "black",
+        visual_only=True,
+    )
+    bend = (pivot - 0.028, 0.0)
+    inward = (spread / 2 - 0.011) / (bend[0] + length / 2)  # the handles' spread per metre
+    for k, sign in enumerate((-1, 1)):
+        knee = (bend[0], sign * 0.011, z)
+        end = (-length / 2, sign * spread / 2, z)
+        d.segment(
+            f"shank_{k}", "box", (pivot, sign * 0.004, z), knee, (0.0045, z * 0.75), "metal", metal
+        )
+        mid = tuple(a + 0.78 * (b - a) for a, b in zip(knee, end, strict=True))
+        d.segment(f"grip_{k}", "capsule", (knee[0] - 0.004, knee[1], z), mid, z, "rubber", grip)
+        d.segment(f"grip_end_{k}", "capsule", mid, end, z * 1.05, "rubber", tip)
+        d.segment(
+            f"spring_{k}",
+            "box",
+            (bend[0] - 0.008, 0, z + 0.001),
+            (bend[0] - 0.045, sign * (0.011 + inward * 0.045 - 0.004), z + 0.001),
+            (0.0013, 0.0015),
+            "metal",
+            "black" if grip != "black" else "silver",
+        )
+    insulation = d.choice(["red", "blue", "black", "green", "yellow"])
+    wire_x = pivot + jaw * 0.5
+    d.rod("wire", 0.0022, 0.05, (wire_x, 0.0, z), "plastic", insulation, axis="y")
+    for k, sign in enumerate((-1, 1)):
+        d.rod(f"copper_{k}", 0.0011, 0.008, (wire_x, sign * 0.028, z), "metal", "orange", axis="y")
+    return Traits((grip, metal), "metal", "irregular")
 
 
 @generator("chopsticks", size=(0.2, 0.28), synonyms=("chopsticks", "pair of chopsticks"))

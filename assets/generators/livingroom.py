@@ -6,7 +6,7 @@ import math
 
 from ..design import Design, Traits
 from ..parts import X_TO_Z, axis_angle_quat
-from .registry import generator
+from .registry import generator, revised
 
 
 def _cactus(d: Design, z: float) -> None:
@@ -298,3 +298,68 @@ def candle_holder(d: Design) -> Traits:
     d.upright("wick", 0.0008, 0.004, floor + 0.016, "fabric", "black", visual_only=True)
     d.interior((r * 0.5, r * 0.5), floor_z=floor + 0.016, rim_z=z + h)
     return Traits((color,), material, "cylinder")
+
+
+@revised("candle_holder", 3)
+def candle_holder_3(d: Design) -> Traits:
+    """Revision 3: a lit candle shows what holds it: a glass votive cup with a pillar candle
+    burning low inside, or a candlestick (a drip dish, a turned stem and a socket) with a
+    taper candle and its flame (the empty cups read as a plant pot, a basket or a pencil
+    holder). The candlestick's free place is its drip dish beside the stem."""
+    wax = d.choice(["white", "white", "beige", "red"])
+    if d.rng.random() < 0.55:  # a glass votive
+        color = d.choice(["transparent", "transparent", "red", "blue", "purple"])
+        r, h = d.uniform(0.03, 0.036), d.uniform(0.065, 0.08)
+        base = d.uniform(0.006, 0.009)
+        d.upright("base", r + 0.003, base, 0.0, "glass", color)
+        d.wall("wall", r, 0.003, h - base, base, "glass", color, segments=16)
+        candle = h * d.uniform(0.35, 0.45)
+        d.upright("candle", r - 0.003, candle, base, "organic", wax, solid_fraction=0.9)
+        top = base + candle
+        _flame(d, top, 0.85)
+        d.interior((r * 0.55, r * 0.55), floor_z=top, rim_z=h)
+        return Traits((color,), "glass", "cylinder")
+    metal = d.choice(["golden", "golden", "silver"])
+    fill = dict(solid_fraction=0.2)
+    dish_r, dish_t = d.uniform(0.038, 0.045), 0.004
+    d.upright("dish", dish_r, dish_t, 0.0, "metal", metal, **fill)
+    d.wall("dish_rim", dish_r - 0.003, 0.003, 0.007, dish_t, "metal", metal, segments=16)
+    stem = d.uniform(0.035, 0.045)
+    d.upright("stem", 0.0045, stem, dish_t, "metal", metal, **fill)
+    for k, frac in enumerate((0.25, 0.7)):
+        d.ellipsoid(
+            f"knop_{k}", (0.009, 0.009, 0.005), (0, 0, dish_t + frac * stem), "metal", metal, **fill
+        )
+    z = dish_t + stem
+    d.upright("bobeche", 0.016, 0.003, z, "metal", metal, **fill)
+    d.upright("socket", 0.0105, 0.014, z + 0.003, "metal", metal, **fill)
+    taper = d.uniform(0.05, 0.062)
+    d.upright("taper", 0.0085, taper, z + 0.006, "organic", wax)
+    _flame(d, z + 0.006 + taper, 0.8)
+    x = (dish_r - 0.003 + 0.009) / 2  # the free part of the dish, beside the stem
+    half = (dish_r - 0.003 - 0.009) / 2 - 0.001
+    d.interior((half, half), floor_z=dish_t, rim_z=dish_t + 0.007, center=(x, 0.0))
+    return Traits((metal, wax), "metal", "irregular")
+
+
+def _flame(d: Design, top: float, scale: float) -> None:
+    """A wick on a candle's top at height ``top`` and its flame, a yellow drop round an
+    orange core."""
+    d.upright("wick", 0.0007, 0.004 * scale, top, "fabric", "black", visual_only=True)
+    zf = top + 0.004 * scale + 0.007 * scale
+    d.ellipsoid(
+        "flame",
+        (0.0042 * scale, 0.0042 * scale, 0.0095 * scale),
+        (0, 0, zf),
+        "organic",
+        "yellow",
+        visual_only=True,
+    )
+    d.ellipsoid(
+        "flame_core",
+        (0.0026 * scale, 0.0026 * scale, 0.005 * scale),
+        (0, 0, zf - 0.004 * scale),
+        "organic",
+        "orange",
+        visual_only=True,
+    )

@@ -6,7 +6,7 @@ import math
 
 from ..design import Design, Traits
 from ..parts import axis_angle_quat, quat_mul
-from .registry import generator
+from .registry import generator, revised
 
 PLASTICS = ["red", "blue", "green", "yellow", "white", "gray", "black", "pink", "orange"]
 
@@ -407,6 +407,92 @@ def lunch_box(d: Design) -> Traits:
     return Traits(tuple(dict.fromkeys((color, lid))), "plastic", "cuboid")
 
 
+@revised("lunch_box", 3)
+def lunch_box_3(d: Design) -> Traits:
+    """Revision 3: a bento box packed with lunch (a sandwich, and fruit or cherry tomatoes in
+    the small pockets), its clip-lock lid standing open behind; the big pocket stays free
+    (the empty first box read as a toolbox, a storage box or a pencil box)."""
+    color = d.choice(["red", "blue", "green", "yellow", "pink", "orange", "white", "purple"])
+    lid = d.choice([color, "white", "transparent"])
+    clip = d.choice(["white", "gray", color]) if lid != "white" else d.choice(["gray", color])
+    hx, hy = d.uniform(0.085, 0.1), d.uniform(0.06, 0.07)
+    h, t = d.uniform(0.038, 0.046), 0.003
+    _tray(d, hx, hy, h, t, "plastic", color)
+    split = -hx * d.uniform(0.1, 0.2)  # the big pocket (-x) is free, two small ones at +x
+    wall = (h - t) / 2 - 0.004
+    d.box("divider", (t / 2, hy - t, wall), (split, 0, t + wall), "plastic", color)
+    d.box(
+        "divider_small",
+        ((hx - split - t) / 2, t / 2, wall),
+        ((hx + split) / 2, 0, t + wall),
+        "plastic",
+        color,
+    )
+    # a sandwich cut in two, lying in the back small pocket (-y)
+    px0, px1 = split + t / 2, hx - t
+    bread, filling = d.choice(["beige", "white", "brown"]), d.choice(["green", "red", "yellow"])
+    sy = (hy - t - t / 2) / 2
+    for k in range(2):
+        cx = px0 + (px1 - px0) * (0.27 + 0.46 * k)
+        half = ((px1 - px0) * 0.22, sy - 0.004)
+        layers = ((bread, 0.007), (filling, 0.004), (bread, 0.007))
+        z = t
+        for j, (col, thick) in enumerate(layers):
+            grow = 0.0015 if col == filling else 0.0
+            d.box(
+                f"sandwich_{k}_{j}",
+                (half[0] + grow, half[1] + grow, thick / 2),
+                (cx, -sy - t / 4, z + thick / 2),
+                "organic",
+                col,
+            )
+            z += thick
+    # round fruit in the front small pocket (+y)
+    fruit = d.choice(["red", "green", "purple", "orange"])
+    r = min(d.uniform(0.0085, 0.01), sy * 0.45 - 0.001)
+    n = max(2, int((px1 - px0) / (2 * r + 0.001)))
+    for k in range(2 * n):
+        cx = px0 + (px1 - px0) * (k % n + 0.5) / n
+        cy = sy + t / 4 + (k // n - 0.5) * sy * 0.9
+        d.sphere(f"fruit_{k}", r, (cx, cy, t + r), "organic", fruit)
+        d.upright(
+            f"stalk_{k}",
+            0.0008,
+            0.003,
+            t + 2 * r - 0.001,
+            "organic",
+            "green",
+            xy=(cx, cy),
+            visual_only=True,
+        )
+    # the lid standing open behind the box, its clips hanging from its edges
+    lean = d.uniform(0.12, 0.3)
+    quat = axis_angle_quat((1, 0, 0), lean)
+    pos = (0, -hy - 0.003 - math.sin(lean) * hy, h + math.cos(lean) * hy)
+    d.add("lid", "box", (hx + 0.002, 0.003, hy + 0.002), pos, "plastic", lid, quat=quat)
+    d.frame("seal", (hx - t, hy - t), 0.002, h, 0.001, "silicone", "gray")
+    for k, sign in enumerate((-1, 1)):
+        d.box(
+            f"clip_{k}",
+            (0.015, 0.0025, 0.009),
+            (sign * hx * 0.5, hy + 0.0025, h - 0.011),
+            "plastic",
+            clip,
+        )
+        d.box(
+            f"clip_side_{k}",
+            (0.0025, 0.012, 0.009),
+            (sign * (hx + 0.0025), 0, h - 0.011),
+            "plastic",
+            clip,
+        )
+    x0, x1 = -hx + t, split - t / 2
+    d.interior(
+        ((x1 - x0) / 2 - 0.003, hy - t - 0.003), floor_z=t, rim_z=h, center=((x0 + x1) / 2, 0.0)
+    )
+    return Traits(tuple(dict.fromkeys((color, lid))), "plastic", "cuboid")
+
+
 @generator(
     "bucket", size=(0.16, 0.27), synonyms=("bucket", "pail"), graspable=False, container=True
 )
@@ -518,3 +604,71 @@ def placemat(d: Design) -> Traits:
                 visual_only=True,
             )
     return Traits(tuple(dict.fromkeys((color, hem))), material, "disk" if round_ else "flat")
+
+
+@revised("placemat", 3)
+def placemat_3(d: Design) -> Traits:
+    """Revision 3: a woven or wipe-clean mat printed with a place setting (a plate between a
+    fork and a knife, a glass above the knife), a fabric one fringed at its short ends (the
+    slatted first mat read as a bamboo mat)."""
+    material = d.choice(["fabric", "fabric", "plastic", "plastic"])
+    color = d.choice(["red", "blue", "green", "white", "gray", "beige", "pink", "orange"])
+    hem = d.choice([color, "white"] if color != "white" else ["white", "gray", "blue"])
+    ink = "gray" if color in ("white", "beige") else "white"
+    hx, hy = d.uniform(0.13, 0.145), d.uniform(0.095, 0.11)
+    thick = 0.003
+    fringe = material == "fabric"
+    _lipped_slab(d, hx, hy, thick, material, color, hem, False)
+    z = thick + 0.0028
+    kw = dict(visual_only=True)
+    plate = min(hy - 0.022, hx * 0.5)
+    d.flat_ring("plate_rim", plate - 0.006, 0.006, 0.0003, z, "plastic", ink, segments=24, **kw)
+    d.flat_ring("plate_well", plate * 0.62, 0.002, 0.0003, z, "plastic", ink, segments=20, **kw)
+    fx, kx = -plate - 0.018, plate + 0.016
+    span = plate * 0.95
+    d.box("fork_handle", (0.0025, span * 0.55, 0.0002), (fx, span * 0.42, z), "plastic", ink, **kw)
+    d.box("fork_head", (0.0065, 0.006, 0.0002), (fx, -span * 0.18, z), "plastic", ink, **kw)
+    for k in range(4):
+        x = fx - 0.0055 + k * 0.0037
+        d.box(
+            f"fork_tine_{k}",
+            (0.001, 0.011, 0.0002),
+            (x, -span * 0.18 - 0.016, z),
+            "plastic",
+            ink,
+            **kw,
+        )
+    d.box("knife_handle", (0.003, span * 0.4, 0.0002), (kx, span * 0.55, z), "plastic", ink, **kw)
+    d.box(
+        "knife_blade",
+        (0.0035, span * 0.52, 0.0002),
+        (kx + 0.0005, -span * 0.36, z),
+        "plastic",
+        ink,
+        **kw,
+    )
+    d.flat_ring(
+        "glass_print",
+        0.012,
+        0.003,
+        0.0003,
+        z,
+        "plastic",
+        ink,
+        segments=14,
+        center=(kx + 0.006, -hy + 0.022),
+        **kw,
+    )
+    if fringe:
+        for k, sign in enumerate((-1, 1)):
+            for j in range(int((2 * hy - 0.01) / 0.006)):
+                y = -hy + 0.008 + j * 0.006
+                d.box(
+                    f"fringe_{k}_{j}",
+                    (0.006, 0.0012, 0.0006),
+                    (sign * (hx + 0.006), y, 0.0006),
+                    "fabric",
+                    hem,
+                    **kw,
+                )
+    return Traits(tuple(dict.fromkeys((color, hem))), material, "flat")

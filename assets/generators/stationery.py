@@ -8,7 +8,7 @@ from ..design import Design, Traits
 from ..parts import axis_angle_quat
 from ..textures import Texture
 from .desktop import BRIGHT
-from .registry import generator
+from .registry import generator, revised
 
 
 @generator("stapler", size=(0.12, 0.2))
@@ -99,6 +99,111 @@ def pen_holder(d: Design) -> Traits:
     return Traits((color,), material, "cuboid")
 
 
+@revised("pen_holder", 3)
+def pen_holder_3(d: Design) -> Traits:
+    """Revision 3: the holder carries a few pens and pencils standing against its wall and
+    sticking out above the rim, clear of the interior (an empty one read as a cup)."""
+    material = d.choice(["plastic", "metal", "wood", "ceramic"])
+    color = d.choice(
+        {
+            "plastic": BRIGHT + ["white"],
+            "metal": ["silver", "black", "gray"],
+            "wood": ["brown", "beige"],
+            "ceramic": ["white", "blue", "black", "green", "beige"],
+        }[material]
+    )
+    t = {"metal": 0.0015, "wood": 0.006, "plastic": 0.003, "ceramic": 0.005}[material]
+    h, floor = d.uniform(0.078, 0.09), 0.006
+    round_cup = d.rng.random() < 0.6
+    if round_cup:
+        r = d.uniform(0.034, 0.04)
+        d.upright("floor", r + t, floor, 0.0, material, color)
+        d.wall("wall", r, t, h - floor, floor, material, color, segments=20)
+        half = (r * 0.6, r * 0.6)
+        if material == "metal":  # a wire mesh: dark holes in rows round the wall
+            for k in range(20):
+                a = 2 * math.pi * (k + 0.5) / 20
+                pos = ((r + t + 0.0004) * math.cos(a), (r + t + 0.0004) * math.sin(a))
+                d.box(
+                    f"mesh_{k}",
+                    (0.0003, 0.0012, (h - floor) * 0.42),
+                    (*pos, floor + h * 0.46),
+                    "metal",
+                    "gray" if color == "black" else "black",
+                    yaw=a,
+                    visual_only=True,
+                )
+        spots = [(r - 0.005, 0.0), (0.0, r - 0.005), (-(r - 0.005), 0.0), (0.0, -(r - 0.005))]
+    else:
+        r = d.uniform(0.03, 0.034)
+        d.open_box("cup", (r + t, r + t), h, t, material, color, floor=floor, tags=(-1, 1))
+        half = (r * 0.62, r * 0.62)
+        spots = [(r - 0.005, 0.0), (0.0, r - 0.005), (-(r - 0.005), 0.0), (0.0, -(r - 0.005))]
+    d.interior(half, floor_z=floor, rim_z=h)
+    order = [int(k) for k in d.rng.permutation(4)][: d.choice([2, 3, 3])]
+    for n, k in enumerate(sorted(order)):
+        x, y = spots[k]
+        _desk_pen(d, f"pen_{n}", x, y, floor, h + d.uniform(0.025, 0.038), d.uniform(-0.07, 0.07))
+    shape = "cylinder" if round_cup else "cuboid"
+    return Traits((color,), material, shape)
+
+
+def _desk_pen(d: Design, name: str, x: float, y: float, z0: float, top: float, lean: float) -> None:
+    """A pen or a pencil standing in a holder at (x, y), from z0 to top, leaning ``lean``
+    radians sideways (along the wall), its writing end down (visual: it rides in the cup)."""
+    along = math.atan2(y, x) + math.pi / 2  # the wall's direction here
+    length = top - z0
+    sx, sy = math.cos(along) * math.sin(lean), math.sin(along) * math.sin(lean)
+    p0, p1 = (x, y, z0), (x + sx * length, y + sy * length, z0 + math.cos(lean) * length)
+
+    def at(f: float) -> tuple[float, float, float]:
+        return tuple(a + (b - a) * f for a, b in zip(p0, p1, strict=True))
+
+    kind = d.choice(["pencil", "pen", "pen", "marker"])
+    if kind == "pencil":
+        d.segment(name, "cylinder", p0, at(0.93), 0.0037, "wood", "yellow", visual_only=True)
+        d.segment(
+            f"{name}_ferrule",
+            "cylinder",
+            at(0.93),
+            at(0.965),
+            0.0038,
+            "metal",
+            "silver",
+            visual_only=True,
+        )
+        d.segment(
+            f"{name}_eraser",
+            "cylinder",
+            at(0.965),
+            p1,
+            0.0036,
+            "rubber",
+            "pink",
+            visual_only=True,
+        )
+        return
+    if kind == "marker":
+        ink = d.choice(BRIGHT)
+        d.segment(name, "cylinder", p0, at(0.7), 0.0055, "plastic", "white", visual_only=True)
+        d.segment(f"{name}_cap", "cylinder", at(0.7), p1, 0.006, "plastic", ink, visual_only=True)
+        return
+    ink = d.choice(["blue", "black", "red"])
+    body = d.choice(["white", "transparent", "black", "blue"])
+    d.segment(name, "cylinder", p0, at(0.9), 0.0042, "plastic", body, visual_only=True)
+    d.segment(f"{name}_button", "cylinder", at(0.9), p1, 0.0025, "plastic", ink, visual_only=True)
+    d.segment(
+        f"{name}_clip",
+        "box",
+        at(0.72),
+        at(0.95),
+        (0.0012, 0.0008),
+        "plastic",
+        ink,
+        visual_only=True,
+    )
+
+
 @generator("glue_stick", size=(0.07, 0.12), synonyms=("glue stick", "stick of glue"))
 def glue_stick(d: Design) -> Traits:
     body = d.choice(["white", "yellow", "blue", "purple", "green", "red"])
@@ -112,6 +217,71 @@ def glue_stick(d: Design) -> Traits:
     label = d.choice(["white", "yellow", "red", "black"])
     d.upright("label", *band, "paper", label, visual_only=True)
     d.upright("cap", r + 0.0008, cap_h, h - cap_h, "plastic", cap, solid_fraction=0.4)
+    return Traits((body, cap), "plastic", "cylinder")
+
+
+@revised("glue_stick", 3)
+def glue_stick_3(d: Design) -> Traits:
+    """Revision 3: an open glue stick, a stubby printed tube with the white glue twisted up
+    out of it, its ribbed twist base, and the cap lying beside it (capped, it read as a
+    marker or a lip balm)."""
+    body = d.choice(["white", "yellow", "blue", "purple", "green", "red"])
+    cap = d.choice(["white", "red", "blue", "orange", "purple", "black"])
+    glue = d.choice(["white", "white", "white", "purple"])
+    r, h = d.uniform(0.011, 0.013), d.uniform(0.08, 0.095)
+    twist = 0.009
+    d.upright("twist", r * 0.96, twist, 0.0, "plastic", cap)
+    for k in range(12):  # the grip ribs of the twist base
+        a = 2 * math.pi * k / 12
+        pos = (r * 0.96 * math.cos(a), r * 0.96 * math.sin(a), twist / 2)
+        d.box(
+            f"rib_{k}",
+            (0.0006, 0.0007, twist * 0.4),
+            pos,
+            "plastic",
+            cap,
+            yaw=a,
+            visual_only=True,
+        )
+    body_h = h - twist - d.uniform(0.01, 0.013)
+    ink = "white" if body in ("blue", "purple", "green", "red") else "blue"
+    band = Texture("label", (ink, body if ink == "white" else "white"))
+    d.upright("body", r, body_h, twist, "plastic", body, solid_fraction=0.6, texture=band)
+    d.upright("rim", r + 0.0003, 0.0015, twist + body_h - 0.0015, "plastic", body, visual_only=True)
+    stick = h - twist - body_h
+    d.upright("glue", r * 0.86, stick - 0.002, twist + body_h, "plastic", glue)
+    d.add(  # the glue's worn, slanted top
+        "glue_top",
+        "ellipsoid",
+        (r * 0.86, r * 0.86, 0.0025),
+        (0, 0, h - 0.0027),
+        "plastic",
+        glue,
+        quat=axis_angle_quat((0, 1, 0), 0.18),
+        visual_only=True,
+    )
+    cap_h = d.uniform(0.024, 0.03)
+    cr = r + 0.0008
+    side = (0.0, r + cr + 0.006)
+    d.rod("cap_lying", cr, cap_h, (side[0], side[1], cr), "plastic", cap)
+    d.rod(
+        "cap_rim",
+        cr + 0.0004,
+        0.002,
+        (side[0] + cap_h / 2 - 0.001, side[1], cr),
+        "plastic",
+        cap,
+        visual_only=True,
+    )
+    d.rod(
+        "cap_hollow",
+        cr - 0.0015,
+        0.0006,
+        (side[0] + cap_h / 2 + 0.0003, side[1], cr),
+        "plastic",
+        "gray",
+        visual_only=True,
+    )
     return Traits((body, cap), "plastic", "cylinder")
 
 
@@ -453,6 +623,80 @@ def staples_box(d: Design) -> Traits:
     return Traits((color, "transparent") if clear else (color, label), "paper", "cuboid")
 
 
+@revised("staples_box", 3)
+def staples_box_3(d: Design) -> Traits:
+    """Revision 3: a small closed carton printed with a big staple, and a strip of staples
+    lying in front of it on its legs, the single staples marked across it (the open box of
+    silver rows read as a toaster)."""
+    color = d.choice(["red", "blue", "yellow", "green", "black", "orange"])
+    label = "white" if color != "white" else "black"
+    lx, ly, h = d.uniform(0.05, 0.062), d.uniform(0.026, 0.032), d.uniform(0.016, 0.02)
+    d.slab("carton", (lx / 2, ly / 2, h / 2), 0.0, "paper", color, solid_fraction=0.6)
+    d.box(
+        "flap",
+        (0.0006, ly / 2 + 0.0004, h * 0.42),
+        (lx / 2 - 0.004, 0, h / 2),
+        "paper",
+        label,
+        visual_only=True,
+    )
+    picture = Texture("badge", (label, "silver"), "staple")
+    d.box(
+        "staple_print",
+        (ly * 0.42, ly * 0.42, 0.0002),
+        (-lx * 0.12, 0, h + 0.0002),
+        "paper",
+        color,
+        visual_only=True,
+        texture=picture,
+    )
+    front = Texture("sticker", (label, "silver"), "staple")
+    d.box(
+        "front_print",
+        (lx * 0.42, 0.0002, h * 0.38),
+        (0, ly / 2 + 0.0002, h / 2),
+        "paper",
+        color,
+        visual_only=True,
+        texture=front,
+    )
+    strips = d.choice([1, 2])
+    crown, leg = 0.0127, 0.006
+    for k in range(strips):  # strips of staples in front, crowns up
+        length = d.uniform(0.03, 0.042)
+        x = -lx / 2 + length / 2 + k * 0.008
+        y = ly / 2 + 0.005 + crown / 2 + k * (crown + 0.003)
+        d.slab(
+            f"strip_{k}",
+            (length / 2, crown / 2, 0.00045),
+            leg - 0.0009,
+            "metal",
+            "silver",
+            xy=(x, y),
+        )
+        for j, s in enumerate((-1, 1)):
+            d.slab(
+                f"strip_{k}_leg_{j}",
+                (length / 2, 0.00045, (leg - 0.0009) / 2),
+                0.0,
+                "metal",
+                "silver",
+                xy=(x, y + s * (crown / 2 - 0.00045)),
+            )
+        for j in range(int(length / 0.0025)):  # the joins between single staples
+            sx = x - length / 2 + (j + 1) * 0.0025
+            if sx < x + length / 2 - 0.001:
+                d.box(
+                    f"strip_{k}_seam_{j}",
+                    (0.00015, crown / 2, 0.0002),
+                    (sx, y, leg + 0.0001),
+                    "metal",
+                    "gray",
+                    visual_only=True,
+                )
+    return Traits((color, "silver"), "paper", "cuboid")
+
+
 @generator(
     "sticky_notes", size=(0.05, 0.1), synonyms=("sticky notes", "post-it notes", "sticky pad")
 )
@@ -477,4 +721,86 @@ def sticky_notes(d: Design) -> Traits:
         yaw=d.uniform(0.04, 0.1),
         visual_only=True,
     )
+    return Traits(tuple(dict.fromkeys((first, second))), "paper", "cuboid")
+
+
+@revised("sticky_notes", 3)
+def sticky_notes_3(d: Design) -> Traits:
+    """Revision 3: a thick square pad of bright notes, its sheets lined along the edges,
+    the top note peeling up from its glued edge with a scribbled note on it (the thin
+    plain slab read as a folder, an envelope or a book)."""
+    notes = ["yellow", "yellow", "yellow", "pink", "blue", "green", "orange"]
+    first = d.choice(notes)
+    second = d.choice([c for c in notes if c != first]) if d.rng.random() < 0.3 else first
+    side = d.uniform(0.058, 0.07)
+    thick = d.uniform(0.014, 0.022)
+    d.slab("pad", (side / 2, side / 2, thick / 2), 0.0, "paper", first)
+    edge = "white" if first != "white" else "gray"
+    sheets = 7
+    for k in range(1, sheets):  # sheet lines round the pad's sides
+        z = thick * k / sheets
+        color = second if (second != first and k % 2) else edge
+        for j, (hx, hy, x, y) in enumerate(
+            (
+                (side / 2 + 0.0002, 0.00018, 0, side / 2),
+                (side / 2 + 0.0002, 0.00018, 0, -side / 2),
+                (0.00018, side / 2 + 0.0002, side / 2, 0),
+                (0.00018, side / 2 + 0.0002, -side / 2, 0),
+            )
+        ):
+            d.box(
+                f"sheet_line_{k}_{j}",
+                (hx, hy, 0.00022),
+                (x, y, z),
+                "paper",
+                color,
+                visual_only=True,
+            )
+    glue = side * 0.22  # the glued band along -x stays flat, the rest lifts
+    d.box(
+        "glued_band",
+        (glue / 2, side / 2, 0.0003),
+        (-side / 2 + glue / 2, 0, thick + 0.0003),
+        "paper",
+        first,
+        visual_only=True,
+    )
+    lift = d.uniform(0.18, 0.3)
+    free = side - glue
+    hinge = (-side / 2 + glue, 0.0, thick + 0.0003)
+    pitch = axis_angle_quat((0, 1, 0), -lift)
+    centre = (
+        hinge[0] + math.cos(lift) * free / 2,
+        0.0,
+        hinge[2] + math.sin(lift) * free / 2,
+    )
+    d.add(
+        "curl",
+        "box",
+        (free / 2, side / 2, 0.0003),
+        centre,
+        "paper",
+        first,
+        quat=pitch,
+        visual_only=True,
+    )
+    ink = d.choice(["blue", "black", "red"])
+    for k in range(d.choice([3, 4])):  # scribbled lines on the lifted note
+        u = -free * 0.3 + k * free * 0.17
+        width = side * d.uniform(0.25, 0.36)
+        pos = (
+            hinge[0] + math.cos(lift) * (free / 2 + u) - math.sin(lift) * 0.0005,
+            d.uniform(-0.05, 0.05) * side,
+            hinge[2] + math.sin(lift) * (free / 2 + u) + math.cos(lift) * 0.0005,
+        )
+        d.add(
+            f"scribble_{k}",
+            "box",
+            (0.0007, width, 0.0002),
+            pos,
+            "paper",
+            ink,
+            quat=pitch,
+            visual_only=True,
+        )
     return Traits(tuple(dict.fromkeys((first, second))), "paper", "cuboid")

@@ -24,6 +24,76 @@ def hex_key(d: Design) -> Traits:
     return Traits((color,), "metal", "L-shape")
 
 
+@revised("hex_key", 3)
+def hex_key_3(d: Design) -> Traits:
+    """Revision 3: mostly a set of L-shaped hex keys of falling sizes nested in a plastic
+    clip, else one key with a rounded bend and a ball end (the single straight key read as a
+    razor)."""
+    color = d.choice(["black", "black", "silver", "golden"])
+    if d.rng.random() < 0.65:
+        clip = d.choice(["red", "black", "blue", "yellow", "green"])
+        if clip == color:
+            clip = "red"
+        n = d.choice([4, 5, 6])
+        big = d.uniform(0.0035, 0.0042)
+        long0 = d.uniform(0.1, 0.125)
+        y = 0.0
+        x0, prev = -long0 / 2, big
+        for k in range(n):
+            a = big * (1 - 0.55 * k / (n - 1))
+            length = long0 * (1 - 0.35 * k / (n - 1))
+            short = max(0.022, a * 8)
+            if k:
+                y += a + prev + 0.0015
+            prev = a
+            _hex_l(d, f"key_{k}", a, length, short, (x0, y), color)
+        hy = y / 2 + big + 0.003
+        d.box(
+            "clip",
+            (0.009, hy, big + 0.0015),
+            (x0 + 0.014, y / 2, big + 0.0015 - 0.0005),
+            "plastic",
+            clip,
+        )
+        d.box(
+            "clip_label",
+            (0.006, hy * 0.7, 0.0002),
+            (x0 + 0.014, y / 2, 2 * big + 0.0012),
+            "plastic",
+            "white",
+            visual_only=True,
+        )
+        return Traits((color, clip), "metal", "L-shape")
+    a = d.uniform(0.0041, 0.005)
+    long_arm, short_arm = d.uniform(0.09, 0.13), a * d.uniform(7, 9)
+    _hex_l(d, "key", a, long_arm, short_arm, (-long_arm / 2, 0.0), color)
+    d.sphere("ball_end", a * 0.98, (-long_arm / 2 - a * 0.4, 0, a), "metal", color)
+    return Traits((color,), "metal", "L-shape")
+
+
+def _hex_l(d: Design, name: str, a: float, length: float, short: float, start, color: str):
+    """An L-shaped hex key lying flat: its long arm along +x from ``start`` (x, y), a rounded
+    bend, and its short arm along +y."""
+    x0, y0 = start
+    bend = 2.2 * a
+    d.hex_rod(f"{name}_long", a, length - bend, (x0 + (length - bend) / 2, y0, a), "metal", color)
+    corner = (x0 + length - bend, y0 + bend)
+    for j in range(3):  # the bend, a quarter turn in three steps
+        t0, t1 = j * math.pi / 6, (j + 1) * math.pi / 6
+        p0 = (corner[0] + bend * math.sin(t0), corner[1] - bend * math.cos(t0), a)
+        p1 = (corner[0] + bend * math.sin(t1), corner[1] - bend * math.cos(t1), a)
+        d.segment(f"{name}_bend_{j}", "cylinder", p0, p1, a * 1.05, "metal", color)
+    d.hex_rod(
+        f"{name}_short",
+        a,
+        short - bend,
+        (corner[0] + bend, corner[1] + (short - bend) / 2, a),
+        "metal",
+        color,
+        yaw=math.pi / 2,
+    )
+
+
 @generator("measuring_tape", size=(0.05, 0.1), synonyms=("measuring tape", "tape measure"))
 def measuring_tape(d: Design) -> Traits:
     color = d.choice(["yellow", "yellow", "black", "red", "silver", "orange", "blue"])
