@@ -58,6 +58,11 @@ def test_every_category_has_its_own_names():
     for category, accepted in names.items():
         nouns = {normalise(n) for i in catalog.of_category(category) for n in i.nouns}
         assert nouns & set(accepted), f"{category}: none of its own nouns is accepted"
+    owners: dict[str, list[str]] = {}
+    for category, accepted in names.items():
+        for name in accepted:
+            owners.setdefault(name, []).append(category)
+    assert {n: c for n, c in owners.items() if len(c) > 1} == {}, "a name tells one category"
     with pytest.raises(ValueError, match="unknown category 'teapot'"):
         names_category("teapot", "teapot")
     assert first_guess("a vase or a cup") == "a vase"
