@@ -14,8 +14,9 @@ patterns (``WORDS``) print what a product is (TOOTHPASTE, SODA), in a Hershey fo
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
-from functools import cache
+from functools import cache, partial
 
 import cv2
 import numpy as np
@@ -345,6 +346,14 @@ WORDS: dict[str, tuple[str, ...]] = {
     "curry": ("CURRY",),
     "ginger": ("GINGER",),
     "pepper": ("PEPPER",),
+    "juice": ("JUICE",),
+    "milk": ("MILK",),
+    "chips": ("CHIPS",),
+    "gum": ("GUM",),
+    "chocolate": ("CHOCOLATE",),
+    "glue": ("GLUE",),
+    "eraser": ("ERASER",),
+    "staples": ("STAPLES",),
 }
 #: The Hershey font words are printed in (pure integer rasterisation: the same pixels on
 #: every machine; no font file).
@@ -395,6 +404,182 @@ WORD_PATTERNS = {
 }
 PATTERNS.update(WORD_PATTERNS)
 NEEDED_INKS.update(dict.fromkeys(WORD_PATTERNS, 1))
+
+
+# --- labels that print words where the first labels drew a wordmark ---------------------
+#: ``write(img, center, width, height, ink)``: words (or anything) in a box of that size.
+Writer = Callable[[np.ndarray, tuple[int, int], int, int, tuple], None]
+
+
+#: Azimuth (radians from +x towards +y) that printed words on a standing cylinder face:
+#: the front, a little towards +y, where a sheet's camera stands (as the beverage label).
+FRONT = 0.5
+#: The image column (a fraction of its width) that faces ``FRONT`` on a standing cylinder
+#: (turned upright by ``parts.X_TO_Z``: column u faces azimuth pi/2 + 2 pi u).
+FRONT_U = (FRONT - math.pi / 2) / (2 * math.pi) % 1.0
+
+
+def _around(img, centres: list[float], first_words: float, front: float | None) -> list:
+    """The x of each group (and of its copies one width either side, so a group crossing
+    the seam of a cylinder's side closes round it), the first group's words moved to
+    column ``front`` (a fraction of the width) where one is given; the first group first."""
+    if front is None:
+        return list(centres)
+    w = img.shape[1]
+    shift = front * w - first_words
+    moved = [cx + shift for cx in centres]
+    return moved + [cx + k * w for cx in moved for k in (-1, 1)]
+
+
+def _sticker_with(
+    img, inks, motif, write: Writer, y: float = 0.5, front: float | None = None
+) -> None:
+    """``_sticker``'s layout (the words in the first ink, the pictogram in the last ink
+    beside them) with ``write`` where it draws a wordmark, given more room: a real word is
+    wider than five strokes, so the group repeats less often round a wide surface. Round a
+    cylinder, ``front`` is the column the first words are centred on."""
+    h = img.shape[0]
+    cy = int(y * h)
+    centres, scale = _centres(img, 1.9 if motif else 1.2)
+    word_h, radius = int(0.3 * h * scale), int(0.3 * h * scale)
+    words_dx = -0.36 * h * scale if motif else 0.0
+    for cx in _around(img, centres, centres[0] + words_dx, front):
+        if motif:
+            write(img, (int(cx + words_dx), cy), int(1.0 * h * scale), word_h, COLORS[inks[0]])
+            _motif(img, motif, (int(cx + 0.56 * h * scale), cy), radius, COLORS[inks[-1]])
+        else:
+            write(img, (int(cx), cy), int(1.05 * h * scale), word_h, COLORS[inks[0]])
+
+
+def _label_with(img, inks, motif, write: Writer, front: float | None = None) -> None:
+    """``_label``'s layout (the band across the middle in the first ink) with ``write``
+    where it draws a wordmark (in the part's colour where no other ink is given)."""
+    h, w = img.shape[:2]
+    ground = tuple(_ground(img))
+    cv2.rectangle(img, (0, int(0.34 * h)), (w, int(0.66 * h)), _bgr(COLORS[inks[0]]), -1)
+    if len(inks) > 1:
+        _sticker_with(img, inks[1:], motif, write, front=front)
+    else:
+        centres, scale = _centres(img, 1.2)
+        for cx in _around(img, centres, centres[0], front):
+            write(img, (int(cx), h // 2), int(1.05 * h * scale), int(0.26 * h), ground)
+
+
+def _wave_with(img, inks, motif, write: Writer, front: float | None = None) -> None:
+    """``_wave``'s ribbon under ``write``'s words, all in the first ink."""
+    h, w = img.shape[:2]
+    waves = max(1, round(w / (2 * h)))
+    xs = np.arange(0, w + 1, 4)
+    ys = h * (0.66 + 0.1 * np.sin(2 * math.pi * waves * xs / w))
+    upper = np.stack([xs, ys - 0.06 * h], axis=1)
+    lower = np.stack([xs[::-1], ys[::-1] + 0.06 * h], axis=1)
+    ink = _bgr(COLORS[inks[0]])
+    cv2.fillPoly(img, [np.concatenate([upper, lower]).astype(np.int32)], ink, cv2.LINE_AA)
+    _sticker_with(img, inks, "", write, y=0.34, front=front)
+
+
+def _writer(key: str, around: bool) -> Writer:
+    """Writes the words of ``key``, bolder on an image that is squeezed narrower (a wide
+    surface), so their strokes survive the squeeze; ``around`` a cylinder's side (the
+    image is its whole girth) no wider than a third of the image: read from one side."""
+
+    def write(img, center, width, height, ink) -> None:
+        if around:
+            width = min(width, int(0.3 * img.shape[1]))
+        squeeze = min(max(img.shape[1] / img.shape[0], 1.0), 2.5)
+        lines = WORDS[key]
+        thick = max(1, int(round(height / len(lines) * 0.09)))
+        sizes = [cv2.getTextSize(t, WORD_FONT, 1.0, thick)[0] for t in lines]
+        line_h = max(h for _, h in sizes)
+        gap = 0.45 * line_h
+        block_w = max(w for w, _ in sizes)
+        block_h = len(lines) * line_h + (len(lines) - 1) * gap
+        scale = min(width / block_w, height / block_h)
+        thick = max(1, int(round(line_h * scale * 0.14 * math.sqrt(squeeze))))
+        top = center[1] - block_h * scale / 2
+        for k, (text, (w, _)) in enumerate(zip(lines, sizes, strict=True)):
+            base = top + ((k + 1) * line_h + k * gap) * scale
+            org = (int(round(center[0] - w * scale / 2)), int(round(base)))
+            cv2.putText(img, text, org, WORD_FONT, scale, _bgr(ink), thick, cv2.LINE_AA)
+
+    return write
+
+
+#: The layouts of ``label``, ``sticker`` and ``wave`` printing words: ``<layout>_words_<key>``
+#: (a flat face) and ``<layout>_around_<key>`` (a cylinder's side) draw what ``<layout>``
+#: draws, the words of ``WORDS[key]`` in place of each wordmark.
+LAYOUTS = {"label": _label_with, "sticker": _sticker_with, "wave": _wave_with}
+#: The words of those patterns: pattern -> (layout, key, around a cylinder).
+LAYOUT_WORDS: dict[str, tuple[str, str, bool]] = {
+    f"{layout}_{kind}_{key}": (layout, key, kind == "around")
+    for key in WORDS
+    for layout in LAYOUTS
+    for kind in ("words", "around")
+}
+for _name, (_layout, _key, _round) in LAYOUT_WORDS.items():
+    PATTERNS[_name] = partial(
+        LAYOUTS[_layout], write=_writer(_key, _round), front=FRONT_U if _round else None
+    )
+    NEEDED_INKS[_name] = 1
+
+
+def _pictogram(img, inks, motif) -> None:
+    """``_sticker``'s pictograms (in the last ink) alone, centred, no wordmark: a wrapper
+    too narrow to print a word the right way up."""
+    h = img.shape[0]
+    centres, scale = _centres(img, 1.3)
+    for cx in centres:
+        _motif(img, motif, (int(cx), h // 2), int(0.3 * h * scale), COLORS[inks[-1]])
+
+
+def _ruled(img, inks, motif) -> None:
+    """A blank card to write on: two ruled lines in the first ink (nothing printed)."""
+    h, w = img.shape[:2]
+    ink, thick = _bgr(COLORS[inks[0]]), max(2, h // 40)
+    for y in (0.42, 0.7):
+        cv2.line(img, (int(0.1 * w), int(y * h)), (int(0.9 * w), int(y * h)), ink, thick)
+
+
+PATTERNS.update(pictogram=_pictogram, ruled=_ruled)
+NEEDED_INKS.update(pictogram=1, ruled=1)
+
+#: Every pattern that prints words -> the key of its words in ``WORDS``.
+PRINTED_WORDS: dict[str, str] = {
+    **{name: name.split("_", 1)[1] for name in WORD_PATTERNS},
+    **{name: key for name, (_, key, _) in LAYOUT_WORDS.items()},
+}
+
+
+def first_words(texture: Texture, aspect: float = 1.0) -> tuple[tuple[float, ...], tuple]:
+    """Where ``image`` draws the first copy of the words of a ``LAYOUT_WORDS`` pattern:
+    (their ink, or None for the part's own colour; (x0, y0, x1, y1), the pixels of the
+    square image their box covers)."""
+    layout, key, around = LAYOUT_WORDS[texture.pattern]
+    aspect = min(max(aspect, ASPECTS[0]), ASPECTS[1])
+    width = int(round(SIZE * aspect))
+    canvas = np.zeros((SIZE, width, 4), np.uint8)
+    canvas[:, :] = 1  # a ground no ink has: the part's own colour is told apart below
+    found = []
+
+    def write(img, center, w, h, ink) -> None:
+        if not found:
+            mask = np.zeros((*img.shape[:2], 4), np.uint8)
+            _writer(key, around)(mask, center, w, h, (1.0, 1.0, 1.0))
+            mask = mask[..., 0]
+            ys, xs = np.nonzero(mask)
+            ground = tuple(_ground(img))
+            found.append((None if tuple(ink) == ground else tuple(ink), xs, ys))
+
+    LAYOUTS[layout](canvas, texture.inks, texture.motif, write, front=FRONT_U if around else None)
+    ink, xs, ys = found[0]
+    sx = SIZE / width
+    box = (
+        int(xs.min() * sx),
+        int(ys.min()),
+        int(math.ceil((xs.max() + 1) * sx)),
+        int(ys.max() + 1),
+    )
+    return ink, box
 
 
 #: Patterns for a disc (a cylinder's round end shows the image's inscribed circle): drawn

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import uuid
 from functools import cache
 
 import cv2
@@ -23,7 +24,17 @@ from instructmove_ms.assets.parts import (
     quat_mul,
     quat_to_matrix,
 )
-from instructmove_ms.assets.textures import WORD_FONT, WORD_PATTERNS, WORDS, Texture, image
+from instructmove_ms.assets.textures import (
+    FRONT,
+    LAYOUT_WORDS,
+    PRINTED_WORDS,
+    SIZE,
+    WORD_FONT,
+    WORDS,
+    Texture,
+    first_words,
+    image,
+)
 from instructmove_ms.assets.uv_meshes import aspect, mesh_path
 from instructmove_ms.assets.vocab import COLORS
 
@@ -33,14 +44,15 @@ INDICES = range(10)
 
 @cache
 def _word_parts() -> list[tuple[str, Part]]:
-    """(instance uuid, part) of every part that prints words, indices 0..9 of every
-    category at library revision 3."""
+    """(instance uuid, part) of every part that prints words (``print_``/``wrap_`` and the
+    labels printing words, ``<layout>_words_<key>``), indices 0..9 of every category at
+    library revision 3."""
     found = []
     for category in sorted(GENERATORS):
         for index in INDICES:
             inst = generate_instance(category, index, LIBRARY_REVISION)
             for part in inst.parts:
-                if part.texture is not None and part.texture.pattern in WORD_PATTERNS:
+                if part.texture is not None and part.texture.pattern in PRINTED_WORDS:
                     found.append((inst.uuid, part))
     return found
 
@@ -49,7 +61,7 @@ def _word_parts() -> list[tuple[str, Part]]:
 
 
 def _key(pattern: str) -> str:
-    return pattern.split("_", 1)[1]
+    return PRINTED_WORDS[pattern]
 
 
 def _ink_mask(img: np.ndarray, ink: str) -> np.ndarray:
@@ -105,6 +117,15 @@ def _reads_upright(mask: np.ndarray, key: str, floor: float = 0.5) -> bool:
 
 def _copy_mask(part: Part) -> np.ndarray:
     """The ink of the first copy of the part's words in its image (no pictogram)."""
+    if part.texture.pattern in LAYOUT_WORDS:  # a label's layout: the box of its first words
+        shape = aspect(part.shape, part.size)
+        ink, (x0, y0, x1, y1) = first_words(part.texture, shape)
+        img = image(part.texture, part.rgb, shape)[..., :3].astype(int)
+        target = np.array([round(255 * v) for v in (part.rgb if ink is None else ink)])
+        mask = np.zeros(img.shape[:2], np.float32)
+        box = img[y0:y1, x0:x1]
+        mask[y0:y1, x0:x1] = np.abs(box - target).sum(axis=-1) < 90
+        return mask
     texture = dataclasses.replace(part.texture, motif="")
     img = image(texture, part.rgb, aspect(part.shape, part.size))
     mask = _ink_mask(img, texture.inks[0])
@@ -161,7 +182,9 @@ def _face_failures(part: Part) -> list[str]:
     """Where the part's words would read mirrored or not upright, seen from outside."""
     failures = []
     frames = _frames(part)
-    if part.texture.pattern.startswith("wrap_"):  # a cylinder's side, the whole way round
+    pattern = part.texture.pattern
+    if pattern.startswith("wrap_") or (part.shape == "cylinder" and pattern in LAYOUT_WORDS):
+        # a cylinder's side, the whole way round
         read = [f for f in frames if abs(np.dot(f[1], quat_to_matrix(part.quat)[:, 0])) < 0.5]
     else:  # a box: the faces the image was drawn for (its largest, both sides)
         largest = max(f[0] for f in frames)
@@ -187,6 +210,77 @@ def test_the_library_prints_words():
     patterns = {part.texture.pattern for _, part in _word_parts()}
     assert {"print_toothpaste", "print_face_wash", "print_sanitizer", "print_floss"} <= patterns
     assert any(p.startswith("wrap_") for p in patterns)
+
+
+def test_no_label_draws_a_wordmark():
+    """A label prints the words of what it is, or no word: no row of letter-like strokes
+    (the first labels' wordmark, read as "Lnol" or "oluo") is left at revision 3."""
+    wordmarks = {"label", "sticker", "wave"}  # the patterns that draw one
+    bad = [
+        (category, index, part.name, part.texture.pattern)
+        for category in sorted(GENERATORS)
+        for index in INDICES
+        for part in generate_instance(category, index, LIBRARY_REVISION).parts
+        if part.texture is not None and part.texture.pattern in wordmarks
+    ]
+    assert not bad, bad[:5]
+    layouts = {
+        LAYOUT_WORDS[p.texture.pattern][0]
+        for _, p in _word_parts()
+        if p.texture.pattern in LAYOUT_WORDS
+    }
+    assert layouts == {"label", "sticker", "wave"}  # the labels' layouts print words
+
+
+def test_a_reprint_builds_what_its_previous_build_builds_but_for_the_words():
+    """A reprinted category (revision 3) is its previous build, from the same random
+    draws, each wordmark label printing words instead: the same parts in the same place
+    (a label turned only about its own axis or a quarter, the same box), the same
+    pictogram; nothing else changed."""
+    from instructmove_ms.assets.design import Design
+    from instructmove_ms.assets.generators import generator_at
+    from instructmove_ms.assets.generators.reprints import REPRINTS
+
+    for category in REPRINTS:
+        before = generator_at(category, 2)
+        assert before.revision < 3
+        reprinted = 0
+        for index in INDICES:
+            inst = generate_instance(category, index, LIBRARY_REVISION)
+            d = Design(np.random.default_rng(uuid.UUID(inst.uuid).int % 2**63))
+            before.build(d)
+            parts, _ = d.finish()
+            assert [p.name for p in parts] == [p.name for p in inst.parts]
+            for old, new in zip(parts, inst.parts, strict=True):
+                if old.texture == new.texture:
+                    assert old == new
+                    continue
+                reprinted += 1
+                layout = LAYOUT_WORDS[new.texture.pattern][0]
+                assert layout == old.texture.pattern and new.texture.motif == old.texture.motif
+                assert np.allclose(old.bounds(), new.bounds(), atol=1e-9)
+                same = ("shape", "pos", "material", "color", "rgb", "visual_only")
+                assert all(getattr(old, f) == getattr(new, f) for f in same), (category, old)
+        assert reprinted, category
+
+
+def test_a_standing_sleeve_shows_its_first_words_to_the_front():
+    """Round a standing cylinder a label's first words are centred on the side that faces
+    the front (``textures.FRONT``), where a reader (and a sheet's camera) stands."""
+    seen = 0
+    for _, part in _word_parts():
+        pattern = part.texture.pattern
+        if part.shape != "cylinder" or pattern not in LAYOUT_WORDS:
+            continue
+        rot = quat_to_matrix(part.quat)
+        assert abs(rot[2, 0]) > 0.999, (part.name, pattern)  # standing
+        _, (x0, _, x1, _) = first_words(part.texture, aspect(part.shape, part.size))
+        a = math.pi * (x0 + x1) / SIZE  # the unit cylinder's side at that column
+        out = rot @ np.array([0.0, math.cos(a), math.sin(a)])
+        off = (math.atan2(out[1], out[0]) - FRONT + math.pi) % (2 * math.pi) - math.pi
+        assert abs(off) < 0.1, (part.name, pattern, off)
+        seen += 1
+    assert seen
 
 
 def test_every_printed_word_reads_upright_and_left_to_right_seen_from_outside():

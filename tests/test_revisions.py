@@ -11,7 +11,7 @@ import pytest
 from instructmove_ms.assets import snapshot as snap
 from instructmove_ms.assets.catalog import generate_instance, instance_uuid
 from instructmove_ms.assets.generators import LIBRARY, REVISIONS, generator_at, revised
-from instructmove_ms.assets.textures import image
+from instructmove_ms.assets.textures import PRINTED_WORDS, image
 
 #: What revision 2 rebuilt, and a part (name, colour) that shows it.
 REVISED_2 = {
@@ -37,7 +37,12 @@ REVISED_3_BATH: dict[str, tuple[str, str | None]] = {
 }
 #: ... groceries and stationery ...
 REVISED_3_DESK: dict[str, tuple[str, str | None]] = {
-    "cheese_sticks": ("pull_0", None),  # breaded sticks, one broken with the cheese pulling
+    "cheese_sticks": ("peel_string_0", None),  # string cheese, one peeled into strings
+    "garlic": ("loose_clove", None),  # a loose clove beside the head
+    "hair_clip": ("handle_lip_0", None),  # a claw clip: squeeze handles above the hinge
+    "nail_clipper": ("thumb_pad", None),  # the lever arching back to a thumb pad
+    "egg": ("cup_foot", None),  # standing in an egg cup
+    "pliers": ("grip_flare_0", None),  # V handles with flared grips
     "bread": ("slice_0", None),  # a sliced loaf (or a slashed baguette)
     "potato": ("knob_0", None),
     "peach": ("cheek_0", None),  # the cleft
@@ -47,6 +52,14 @@ REVISED_3_DESK: dict[str, tuple[str, str | None]] = {
     "staples_box": ("strip_0", None),  # a strip of staples beside the carton
     "pen_holder": ("pen_0", None),  # pens standing in it
     "eraser": ("card_sleeve", None),
+    # reprints (``generators.reprints``): the same parts, the label printing what it is
+    "canned_coke": ("body", None),  # COLA over the ribbon
+    "chewing_gum": ("label", None),  # GUM beside the mint leaf
+    "chocolate": ("brand", None),  # CHOCOLATE
+    "juice": ("label", None),  # JUICE beside the fruit (and on the carton's band)
+    "milk_carton": ("print", None),  # MILK beside the drop
+    "potato_chips": ("label", None),  # CHIPS beside the chip
+    "coaster": ("stain_1", "brown"),  # cork, ringed where a glass stood (or slate on cork)
 }
 #: ... electronics, bedroom, kitchenware, living-room, receptacles and tools.
 REVISED_3_ROOM: dict[str, tuple[str, str | None]] = {
@@ -58,11 +71,18 @@ REVISED_3_ROOM: dict[str, tuple[str, str | None]] = {
     "mini_sculpture": ("arm_0", None),  # a figure with raised arms for the ring
     "lunch_box": ("sandwich_0_1", None),  # a bento packed with lunch
     "placemat": ("fork_head", None),  # printed with a place setting
-    "wire_cutters": ("wire", None),  # diagonal cutters biting a wire
+    "wire_cutters": ("bevel_0", None),  # diagonal cutters: a short pointed, bevelled head
     "peeler": ("slot", "black"),  # a slotted blade
     "hex_key": ("clip", None),  # a set of L keys in a clip
     "candle_holder": ("flame", "yellow"),  # a lit candle in it
+    "basket": ("handle_0_0", None),  # woven, a twisted rim and a loop handle at each end
+    "waste_bin": ("pedal", None),  # a pedal bin, its lid open, a bag over the rim
+    "storage_box": ("clip_handle_0", None),  # lid open on a hinge, clip handles at the ends
+    "phone_stand": ("phone", None),  # a smartphone standing on it, icons on its screen
 }
+#: The reprinted categories of revision 3: their part shows it by printing words (a
+#: pattern of ``textures.PRINTED_WORDS``) where the same part drew a wordmark before.
+REPRINTED_3 = {"canned_coke", "chewing_gum", "chocolate", "juice", "milk_carton", "potato_chips"}
 #: Revision -> category -> the part that shows the revision.
 REVISED = {2: REVISED_2, 3: {**REVISED_3_BATH, **REVISED_3_DESK, **REVISED_3_ROOM}}
 #: (category, revision) of every revised build.
@@ -71,6 +91,11 @@ BUILDS = sorted((c, r) for r, cats in REVISED.items() for c in cats)
 
 def _shows(inst, category: str, revision: int) -> bool:
     name, color = REVISED[revision][category]
+    if revision == 3 and category in REPRINTED_3:
+        return any(
+            p.name == name and p.texture is not None and p.texture.pattern in PRINTED_WORDS
+            for p in inst.parts
+        )
     return any(p.name == name and color in (None, p.color) for p in inst.parts)
 
 

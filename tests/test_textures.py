@@ -157,7 +157,7 @@ def test_a_snapshot_frozen_without_textures_rebuilds_them_plain(tmp_path, monkey
     """A snapshot file with no ``textures`` key (every one frozen before them) loads its
     instances plain and hash-checks them; the same entries marked textured are stale."""
     monkeypatch.setattr(snap, "user_snapshot_dir", lambda: tmp_path)
-    coke = generate_instance("canned_coke", 0)
+    coke = generate_instance("canned_coke", 0, 1)  # as the snapshot (revision 1) builds it
     assert any(p.texture is not None for p in coke.parts)
     entry = snap.entry_of(snap.plain(coke))
     path = snap.write_snapshot(tmp_path / "old.json", "old", [entry], snap.Frozen(False, 1))

@@ -309,6 +309,58 @@ def nail_clipper(d: Design) -> Traits:
     return Traits((color,) if lever == color else (color, lever), "metal", "elongated")
 
 
+@revised("nail_clipper", 3)
+def nail_clipper_3(d: Design) -> Traits:
+    """Revision 3: lying along y, seen from the side: two springy jaws joined at a rounded
+    rear with a key-ring hole, the upper one rising and bending down to a curved cutting
+    beak at the front, a pin through them and a lever on the pin arching back and up to a
+    wide thumb pad (the first, flat parallel slabs with square ends, read as a stapler)."""
+    color = d.choice(["silver", "silver", "golden", "gray"])
+    lever = d.choice([color, color, "black", "red", "blue", "pink"])
+    length, w = d.uniform(0.058, 0.08), d.uniform(0.012, 0.015)
+    yb, yf = -length / 2 + w / 2, length / 2 - w / 2
+    t = 0.0012  # the thickness of a jaw
+    d.box("lower_jaw", (w / 2, (yf - yb) / 2, t / 2), (0, 0, t / 2), "metal", color)
+    d.upright("lower_jaw_end", w / 2, t, 0.0, "metal", color, xy=(0.0, yf))
+    d.upright("rear_joint", w / 2, 0.0045, 0.0, "metal", color, xy=(0.0, yb))
+    d.upright(
+        "ring_hole", w * 0.2, 0.0003, 0.0045, "metal", "black", xy=(0.0, yb), visual_only=True
+    )
+    bend, tip = yf - 0.004, yf + w * 0.42
+    d.segment(
+        "upper_jaw",
+        "box",
+        (0, yb, 0.0045 - t / 2),
+        (0, bend, 0.007),
+        (w / 2, t / 2),
+        "metal",
+        color,
+    )
+    d.segment(
+        "upper_beak", "box", (0, bend, 0.007), (0, tip, 0.0033), (w * 0.46, t / 2), "metal", color
+    )
+    d.segment(
+        "lower_beak", "box", (0, bend, t / 2), (0, tip, 0.0025), (w * 0.46, t / 2), "metal", color
+    )
+    d.rod("edge", 0.0005, w * 0.9, (0, tip, 0.0029), "metal", "silver")
+    pin = bend - 0.004
+    top = 0.011
+    d.upright("pin", 0.0016, top, 0.0, "metal", "silver", xy=(0, pin))
+    d.rod("lever_cam", 0.0024, w * 0.75, (0, pin, top), "metal", lever)
+    pad, lift = yb + 0.003, d.uniform(0.007, 0.009)
+    d.segment(
+        "lever",
+        "box",
+        (0, pin - 0.001, top + 0.0015),
+        (0, pad, top + lift),
+        (w * 0.32, 0.0008),
+        "metal",
+        lever,
+    )
+    d.ellipsoid("thumb_pad", (w * 0.55, w * 0.65, 0.0013), (0, pad, top + lift), "metal", lever)
+    return Traits((color,) if lever == color else (color, lever), "metal", "elongated")
+
+
 @generator(
     "dental_floss",
     size=(0.035, 0.06),
@@ -364,6 +416,41 @@ def hair_clip(d: Design) -> Traits:
                 (x, -s * 0.003, 0.0017),
             ]
             _polyline(d, f"tooth_{k}_{j}", tooth, (pitch * 0.16, 0.0017), color)
+    return Traits((color,), "plastic", "irregular")
+
+
+@revised("hair_clip", 3)
+def hair_clip_3(d: Design) -> Traits:
+    """Revision 3: a claw clip standing on its teeth, the two squeeze handles curving up and
+    out above a sprung hinge and two combs of long, separate teeth curving down from it
+    like claws to interlock at the bottom (the first, a solid ridged shell from the hinge
+    down, read as a waffle iron). Each tooth is three straight strokes, so that the clip
+    stays under sixty parts."""
+    color = d.choice(["black", "brown", "pink", "beige", "transparent", "purple", "white"])
+    length, zh = d.uniform(0.06, 0.09), d.uniform(0.028, 0.034)
+    bulge, teeth = d.uniform(0.015, 0.019), d.choice([5, 6, 7])
+    d.rod("hinge", 0.0038, length, (0, 0, zh), "plastic", color)
+    d.rod("spring", 0.0045, length * 0.22, (0, 0, zh), "metal", "silver")
+    handle = length * d.uniform(0.4, 0.46)
+    reach, rise = d.uniform(0.014, 0.018), d.uniform(0.011, 0.014)
+    zc, rz = (zh + 0.0016) / 2, (zh - 0.0016) / 2
+    pitch = length / teeth
+    for k, s in enumerate((-1, 1)):
+        grip = [
+            (0, s * reach * math.sin(a), zh + rise * (1 - math.cos(a)))
+            for a in (0.15, 0.6, 1.05, 1.5)
+        ]
+        _polyline(d, f"handle_{k}", grip, (handle, 0.0015), color)
+        d.rod(f"handle_lip_{k}", 0.0022, 2 * handle, grip[-1], "plastic", color)
+        arc = [(s * bulge * math.cos(a), zc + rz * math.sin(a)) for a in (1.35, 0.9)]
+        d.segment(
+            f"comb_{k}", "box", (0, *arc[0]), (0, *arc[1]), (length / 2, 0.0016), "plastic", color
+        )
+        for j in range(teeth):
+            x = -length / 2 + pitch * (j + 0.25 + 0.5 * k)
+            tooth = [(x, s * bulge * math.cos(a), zc + rz * math.sin(a)) for a in (0.9, 0.05, -0.8)]
+            tooth.append((x, -s * 0.004, 0.0016))
+            _polyline(d, f"tooth_{k}_{j}", tooth, (pitch * 0.18, 0.0016), color)
     return Traits((color,), "plastic", "irregular")
 
 

@@ -87,6 +87,93 @@ def storage_box(d: Design) -> Traits:
     return Traits(colors, material, "cuboid")
 
 
+@revised("storage_box", 3)
+def storage_box_3(d: Design) -> Traits:
+    """Revision 3: a lidded plastic storage box: a stacking rim, its lid standing open on a
+    hinge at the back (a skirt round its edge and latch tabs), flip clip handles at the ends
+    and a label card on the front (the fabric box's weave read as a wire basket)."""
+    color = d.choice(["transparent", "transparent", "white", "gray", "blue", "pink"])
+    if color == "transparent":
+        lid = d.choice(["blue", "white", "gray", "green", "purple", "red"])
+    else:
+        lid = d.choice([color, color, "white"] if color != "white" else ["white", "blue", "gray"])
+    material, t = "plastic", 0.003
+    hx, hy, h = d.uniform(0.1, 0.16), d.uniform(0.08, 0.1), d.uniform(0.1, 0.14)
+    floor = d.open_box("box", (hx, hy), h, t, material, color, full="y")
+    flange = 0.006
+    d.frame("rim", (hx + flange, hy + flange), flange + t, h - 0.01, 0.01, material, color)
+    d.frame("foot", (hx - 0.004, hy - 0.004), 0.004, -0.004, 0.004, material, color)
+    # the lid: built closed (y from the hinge, z up), then swung open past upright
+    lean = d.uniform(0.08, 0.2)
+    lx, ly, lt = hx + flange + 0.002, hy + flange + 0.002, 0.004
+    hinge = (0.0, -ly + 0.002, h + 0.002)
+    turn = axis_angle_quat((1, 0, 0), math.pi / 2 + lean)
+    u = (0.0, -math.sin(lean), math.cos(lean))
+    w = (0.0, -math.cos(lean), -math.sin(lean))  # the closed lid's up
+
+    def on_lid(name, half, x, y, z, col, **kw):
+        pos = tuple(hinge[i] + x * (1, 0, 0)[i] + y * u[i] + z * w[i] for i in range(3))
+        d.add(name, "box", half, pos, material, col, quat=turn, **kw)
+
+    on_lid("lid", (lx, ly, lt / 2), 0.0, ly, lt / 2, lid)
+    skirt = 0.009
+    on_lid("lid_skirt_y0", (lx, 0.002, skirt / 2), 0.0, 0.002, -skirt / 2, lid)
+    on_lid("lid_skirt_y1", (lx, 0.002, skirt / 2), 0.0, 2 * ly - 0.002, -skirt / 2, lid)
+    for k, sign in enumerate((-1, 1)):
+        on_lid(
+            f"lid_skirt_x{k}",
+            (0.002, ly - 0.004, skirt / 2),
+            sign * (lx - 0.002),
+            ly,
+            -skirt / 2,
+            lid,
+        )
+        on_lid(f"lid_rib_{k}", (lx * 0.8, 0.003, 0.002), 0.0, ly + sign * ly * 0.45, -0.002, lid)
+        on_lid(
+            f"latch_tab_{k}", (0.014, 0.002, 0.012), sign * lx * 0.5, 2 * ly + 0.002, -0.006, lid
+        )
+    # flip clip handles hanging at the ends, and the catches they lock on
+    clip = lid
+    for k, sign in enumerate((-1, 1)):
+        x = sign * (hx + 0.012)
+        d.box(f"clip_handle_{k}", (0.003, hy * 0.42, 0.006), (x, 0, h - 0.034), material, clip)
+        for j, y in enumerate((-hy * 0.38, hy * 0.38)):
+            d.segment(
+                f"clip_arm_{k}{j}",
+                "box",
+                (sign * (hx + 0.001), y, h - 0.016),
+                (x, y, h - 0.034),
+                (0.003, 0.0025),
+                material,
+                clip,
+            )
+        d.box(
+            f"grip_{k}",
+            (0.0006, hy * 0.3, 0.006),
+            (sign * (hx + 0.0006), 0, h - 0.05),
+            material,
+            "black",
+            visual_only=True,
+        )
+        d.box(
+            f"catch_{k}",
+            (0.012, 0.003, 0.005),
+            (sign * hx * 0.5, hy + 0.003, h - 0.016),
+            material,
+            lid,
+        )
+    d.box(
+        "label_card",
+        (hx * 0.28, 0.0006, h * 0.13),
+        (0, hy + 0.0008, h * 0.5),
+        "paper",
+        "white",
+        texture=Texture("ruled", ("gray",)),  # a card to write on: nothing printed
+    )
+    d.interior((hx - t - 0.005, hy - t - 0.005), floor_z=floor, rim_z=h)
+    return Traits(tuple(dict.fromkeys((color, lid))), material, "cuboid")
+
+
 @generator(
     "jewelry_box",
     size=(0.1, 0.22),

@@ -122,14 +122,15 @@ def eraser_3(d: Design) -> Traits:
         visual_only=True,
     )
     cover = lx * d.uniform(0.5, 0.6)
-    d.box(
+    d.box(  # a quarter turn (its extents swapped): ERASER on its top read from the front
         "card_sleeve",
-        (cover / 2, ly / 2 + 0.0005, lz / 2 + 0.0005),
+        (ly / 2 + 0.0005, cover / 2, lz / 2 + 0.0005),
         (-lx / 2 + rz * 0.6 + cover / 2, 0, lz / 2),
         "paper",
         sleeve,
+        yaw=math.pi / 2,
         visual_only=True,
-        texture=Texture("label", (ink, sleeve)),
+        texture=Texture("label_words_eraser", (ink, sleeve)),
     )
     for k in range(d.choice([3, 4, 5])):  # rubbings, curled crumbs of eraser
         a, dist = d.uniform(-0.9, 0.9), d.uniform(0.007, 0.012)

@@ -900,6 +900,104 @@ def phone_stand(d: Design) -> Traits:
     return Traits((color,), material, "L-shape")
 
 
+@revised("phone_stand", 3)
+def phone_stand_3(d: Design) -> Traits:
+    """Revision 3: a small desk stand holding a smartphone upright: the phone's black screen
+    lit with a grid of app icons and a dock, resting on a short backrest against a lip split
+    by a cable slot, its charging cable plugged in from below (the bare stand read as a book
+    stand or an easel)."""
+    material = d.choice(["aluminium", "plastic", "wood"])
+    color = d.choice(
+        {
+            "aluminium": ["silver", "gray", "black"],
+            "plastic": ["white", "black", "pink", "blue"],
+            "wood": ["brown", "beige"],
+        }[material]
+    )
+    t = {"aluminium": 0.004, "plastic": 0.005, "wood": 0.01}[material]
+    w, base_t = d.uniform(0.066, 0.074), t * 1.4
+    lean, back = d.uniform(0.3, 0.42), d.uniform(0.055, 0.07)
+    pt, pw = 0.008, d.uniform(0.056, 0.064)  # the phone's thickness and width
+    pl = min(d.uniform(0.105, 0.118), (0.124 - base_t - pt) / math.cos(lean))
+    sin, cos = math.sin(lean), math.cos(lean)
+    u, n = (-sin, cos), (cos, sin)  # up the backrest, and out of its face (x, z)
+    foot = 0.0
+    top = (foot - back * sin, base_t + back * cos)
+    beam(d, "backrest", (foot, base_t), top, w / 2, t / 2, material, color)
+    # the phone lies on the backrest's face, its bottom edge just above the base
+    s = -(t / 2) * math.tan(lean) + 0.0008
+    along, out = pl / 2 + s, t / 2 + pt / 2
+    cx, cz = foot + n[0] * out + u[0] * along, base_t + n[1] * out + u[1] * along
+    tilt = axis_angle_quat((0, 1, 0), -lean)
+    body = d.choice(["black", "black", "silver", "white"])
+    d.add("phone", "box", (pt / 2, pw / 2, pl / 2), (cx, 0, cz), "plastic", body, quat=tilt)
+
+    def on_screen(name, half_w, half_l, y, v, col, lift=0.0004):
+        """A flat patch on the phone's face, ``v`` along it from the centre."""
+        o = pt / 2 + lift
+        pos = (cx + n[0] * o + u[0] * v, y, cz + n[1] * o + u[1] * v)
+        d.add(
+            name, "box", (0.0003, half_w, half_l), pos, "plastic", col, quat=tilt, visual_only=True
+        )
+
+    on_screen("screen", pw / 2 - 0.0025, pl / 2 - 0.004, 0.0, 0.0, "black")
+    on_screen("camera_notch", 0.006, 0.0018, 0.0, pl / 2 - 0.008, "gray", 0.0008)
+    icons = ["red", "green", "blue", "yellow", "orange", "purple", "pink", "white"]
+    cell = (pw - 0.012) / 4
+    for row in range(5):
+        for col in range(4):
+            y = -pw / 2 + 0.006 + cell * (col + 0.5)
+            v = pl / 2 - 0.02 - row * cell * 1.15
+            on_screen(f"icon_{row}_{col}", cell * 0.32, cell * 0.32, y, v, d.choice(icons), 0.0008)
+    on_screen("dock", pw / 2 - 0.006, cell * 0.5, 0.0, -pl / 2 + 0.016, "gray", 0.0006)
+    for col in range(4):
+        y = -pw / 2 + 0.006 + cell * (col + 0.5)
+        on_screen(
+            f"dock_icon_{col}", cell * 0.3, cell * 0.3, y, -pl / 2 + 0.016, d.choice(icons), 0.001
+        )
+    # the base, the lip in front of the phone split by a cable slot, and the plugged cable
+    front = cx + sin * pl / 2 + cos * pt / 2  # the phone's lowest front edge (x)
+    lip_x = front + 0.003
+    rear = min(top[0], cx - sin * pl / 2) - 0.004
+    lx = lip_x + 0.012 - rear
+    d.slab("base", (lx / 2, w / 2, base_t / 2), 0.0, material, color, xy=(rear + lx / 2, 0))
+    gap = 0.012
+    half = (w / 2 - gap / 2) / 2
+    for k, sign in enumerate((-1, 1)):
+        d.slab(
+            f"lip_{k}",
+            (0.0025, half, 0.006),
+            base_t,
+            material,
+            color,
+            xy=(lip_x, sign * (gap / 2 + half)),
+        )
+    d.slab(
+        "cable_slot",
+        (0.004, gap / 2, 0.0004),
+        base_t,
+        material,
+        "black",
+        xy=(lip_x - 0.0015, 0),
+        visual_only=True,
+    )
+    plug = d.choice(["white", "black"])
+    d.slab(
+        "plug",
+        (0.004, 0.005, 0.004),
+        base_t,
+        "plastic",
+        plug,
+        xy=(front - 0.004, 0),
+        visual_only=True,
+    )
+    d.rod("cable", 0.0018, 0.03, (rear - 0.01, 0, 0.0018), "rubber", plug, visual_only=True)
+    if material != "wood":
+        mid = (foot - 0.55 * back * sin - t, base_t + 0.55 * back * cos)
+        beam(d, "strut", (rear + t, base_t), mid, w * 0.3, t / 2, material, color)
+    return Traits(tuple(dict.fromkeys((color, "black"))), material, "L-shape")
+
+
 @generator("vase", size=(0.12, 0.27), synonyms=("vase", "flower vase"), container=True)
 def vase(d: Design) -> Traits:
     material = d.choice(["ceramic", "ceramic", "glass"])

@@ -95,6 +95,25 @@ def egg(d: Design) -> Traits:
     return Traits((color,), "organic", "ellipsoid")
 
 
+@revised("egg", 3)
+def egg_3(d: Design) -> Traits:
+    """Revision 3: a whole egg standing in an egg cup, its narrow end up: blunt below,
+    tapering to a rounded point (the first, a plain ellipsoid lying on its side, read as a
+    kiwi or a coconut when brown)."""
+    color = d.choice(["white", "beige", "brown"])
+    cup = d.choice([c for c in ("white", "white", "yellow", "blue", "red", "green") if c != color])
+    r = d.uniform(0.0175, 0.0195)
+    d.upright("cup_foot", r * 0.95, 0.0035, 0.0, "ceramic", cup)
+    d.upright("cup_stem", r * 0.45, 0.007, 0.0035, "ceramic", cup)
+    base = 0.0105
+    d.upright("cup_floor", r * 0.85, 0.003, base, "ceramic", cup)
+    d.wall("cup", r * 0.88, 0.0025, r * 0.95, base, "ceramic", cup, segments=20, flare=0.15)
+    z0 = base + 0.0025 + 1.15 * r
+    d.ellipsoid("shell", (r, r, 1.15 * r), (0, 0, z0), "organic", color)
+    d.ellipsoid("shell_top", (0.93 * r, 0.93 * r, 1.3 * r), (0, 0, z0 + 0.15 * r), "organic", color)
+    return Traits((color, cup), "organic", "ellipsoid")
+
+
 @generator("canned_coke", size=(0.1, 0.14), synonyms=("can of coke", "soda can", "coke can"))
 def canned_coke(d: Design) -> Traits:
     color = d.choice(["red", "red", "silver", "black", "blue"])

@@ -174,6 +174,77 @@ def garlic(d: Design) -> Traits:
     return Traits(tuple(dict.fromkeys((skin, streak))), "organic", "sphere")
 
 
+@revised("garlic", 3)
+def garlic_3(d: Design) -> Traits:
+    """Revision 3: a papery white head of garlic shaped like a teardrop: plump cloves
+    leaning in to a pointed top with a dry stem, purple streaks running up it, a fringe of
+    roots at the base, and a loose clove lying beside it (the first, a squat ribbed ball,
+    read as a white pumpkin)."""
+    skin = d.choice(["white", "white", "white", "beige"])
+    streak = d.choice(["purple", "purple", skin])
+    r = d.uniform(0.019, 0.024)
+    h = r * d.uniform(0.72, 0.8)
+    d.upright("root_plate", r * 0.4, 0.003, 0.0, "organic", "beige")
+    d.ellipsoid("bulb", (r, r, h), (0, 0, h + 0.002), "organic", skin)
+    count = int(d.rng.integers(6, 9))
+    for k in range(count):
+        a = 2 * math.pi * k / count
+        pos = (r * 0.45 * math.cos(a), r * 0.45 * math.sin(a), h * 1.25 + 0.002)
+        quat = quat_mul(_yaw(a), axis_angle_quat((0, 1, 0), -0.42))
+        radii = (r * 0.44, r * 0.36, h * 1.1)
+        d.add(f"clove_{k}", "ellipsoid", radii, pos, "organic", skin, quat=quat)
+        if streak != skin:
+            d.add(
+                f"streak_{k}",
+                "ellipsoid",
+                (r * 0.48, r * 0.09, h * 1.02),
+                pos,
+                "organic",
+                streak,
+                quat=quat,
+                visual_only=True,
+            )
+    d.ellipsoid("neck", (r * 0.28, r * 0.28, h * 0.6), (0, 0, 2.25 * h), "organic", skin)
+    d.upright("stem", r * 0.1, h * 0.55, 2.6 * h, "organic", "beige")
+    for k in range(14):
+        a = 2 * math.pi * (k + d.uniform(-0.3, 0.3)) / 14
+        reach = r * d.uniform(0.6, 0.8)
+        p0 = (r * 0.25 * math.cos(a), r * 0.25 * math.sin(a), 0.0015)
+        p1 = (reach * math.cos(a), reach * math.sin(a), 0.0008)
+        d.segment(f"root_{k}", "capsule", p0, p1, 0.0008, "organic", "beige", visual_only=True)
+    # a loose clove beside the head, lying on its curved back, its pointed tip towards +x
+    cx, cy, cl, cw = r * 1.45, -r * 1.05, r * 0.55, r * 0.36
+    d.ellipsoid("loose_clove", (cl, cw, cw * 0.85), (cx, cy, cw * 0.85), "organic", skin)
+    tip = (cx + cl * 1.25, cy, cw * 1.0)
+    d.segment(
+        "loose_clove_tip",
+        "ellipsoid",
+        (cx + cl * 0.5, cy, cw * 0.85),
+        tip,
+        (cw * 0.35, cw * 0.3),
+        "organic",
+        skin,
+    )
+    d.ellipsoid(
+        "loose_clove_base",
+        (cw * 0.2, cw * 0.6, cw * 0.55),
+        (cx - cl * 0.92, cy, cw * 0.85),
+        "organic",
+        "beige",
+        visual_only=True,
+    )
+    if streak != skin:
+        d.ellipsoid(
+            "loose_streak",
+            (cl * 0.8, cw * 0.08, cw * 0.9),
+            (cx, cy, cw * 0.85),
+            "organic",
+            streak,
+            visual_only=True,
+        )
+    return Traits(tuple(dict.fromkeys((skin, streak))), "organic", "irregular")
+
+
 def _lying_taper(d: Design, name: str, r0: float, length: float, color: str, bend: float):
     """A tapering body lying along an arc in the xy plane, thick end first; its thick end."""
     n = 5
@@ -667,46 +738,85 @@ def cheese_sticks(d: Design) -> Traits:
 
 @revised("cheese_sticks", 3)
 def cheese_sticks_3(d: Design) -> Traits:
-    """Revision 3: breaded mozzarella sticks, crumb-flecked, one broken in two with the
-    melted cheese stretching in strings across the break (wrapped sticks read as a glue
-    stick or a tube of ointment)."""
-    crumb = d.choice(["golden", "golden", "orange", "brown"])
-    cheese = d.choice(["white", "white", "yellow"])
-    fleck = "golden" if crumb == "brown" else "brown"
-    r, length = d.uniform(0.0095, 0.0115), d.uniform(0.075, 0.09)
-    whole = d.choice([1, 2, 2])
-    for k in range(whole):  # whole sticks side by side behind
-        y = -(k + 1) * 2 * r - 0.002 * k
-        _breaded(d, f"stick_{k}", -0.004 * k, y, r, length, crumb, fleck)
-    gap = d.uniform(0.02, 0.026)
-    half = (length - gap) / 2 + 0.004
-    for k, sign in enumerate((-1, 1)):  # the broken one in front
-        x = sign * (gap / 2 + half / 2)
-        _breaded(d, f"half_{k}", x, 0.0, r, half, crumb, fleck)
-        face = (sign * (gap / 2 + 0.0006), 0.0, r)
-        d.add(
-            f"break_{k}", "cylinder", (r * 0.8, 0.0008), face, "organic", cheese, visual_only=True
+    """Revision 3: plain string cheese: pale cylinders lying side by side, the front one
+    peeled at its end into strings that splay out over the table, and sometimes one still
+    in its clear wrapper with a printed band (the first, wrapped sticks, read as a glue
+    stick; breaded mozzarella sticks read as bread rolls or drumsticks)."""
+    cheese = d.choice(["white", "white", "white", "beige", "yellow"])
+    wrap = d.choice(["red", "blue", "green", "yellow", "purple"])
+    r, length = d.uniform(0.009, 0.011), d.uniform(0.095, 0.12)
+    peel = length * d.uniform(0.3, 0.36)
+    body = length - peel
+    x0 = -length / 2 + body  # where the strings leave the front stick
+    d.rod("stick_peeled", r, body, (x0 - body / 2, 0, r), "organic", cheese)
+    d.upright("stick_end", r * 0.98, 0.0008, 0.0, "organic", cheese, visual_only=True)
+    strands = d.choice([8, 9, 10])
+    for k in range(strands):
+        f = (k + 0.5) / strands - 0.5  # from -0.5 (one side) to 0.5 (the other)
+        y, z = r * 1.4 * f, r + r * 0.5 * math.cos(math.pi * f) * (1 if k % 2 else -0.6)
+        thick = r * d.uniform(0.15, 0.2)
+        mid = (x0 + peel * 0.5, r * 4.5 * f, max(z * 0.6, thick))
+        end = (x0 + peel - thick, r * 7.5 * f, thick)
+        d.segment(
+            f"peel_string_{k}",
+            "capsule",
+            (x0 - 0.004, y, z),
+            mid,
+            thick,
+            "organic",
+            cheese,
+            visual_only=True,
         )
-    pulls = ((-0.45, 0.1, 0.4), (0.0, 0.45, 0.6), (0.4, 0.0, 0.3), (0.1, -0.35, 0.25))
-    for k, (dy, dz, sag) in enumerate(pulls):
-        p0 = (-gap / 2 - 0.001, dy * r, r + dz * r)
-        p2 = (gap / 2 + 0.001, dy * r * 0.8, r + dz * r * 0.6)
-        mid = (0.0, dy * r * 1.2, r + dz * r - sag * r)
-        thick = r * d.uniform(0.18, 0.26)
-        d.segment(f"pull_{k}", "capsule", p0, mid, thick, "organic", cheese, visual_only=True)
-        d.segment(f"pull_end_{k}", "capsule", mid, p2, thick, "organic", cheese, visual_only=True)
-    return Traits((crumb, cheese), "organic", "elongated")
-
-
-def _breaded(
-    d: Design, name: str, x: float, y: float, r: float, length: float, crumb: str, fleck: str
-) -> None:
-    """A breaded stick lying along x, flecked with toasted crumbs."""
-    d.rod(name, r, length, (x, y, r), "organic", crumb, capsule=True)
-    for k in range(int(length / 0.0025)):
-        t, a = d.uniform(-0.45, 0.45), d.uniform(-1.2, 1.2)
-        pos = (x + t * length * 0.9, y + r * math.sin(a), r + r * math.cos(a))
-        d.sphere(f"{name}_crumb_{k}", 0.0009, pos, "organic", fleck, visual_only=True)
+        d.segment(
+            f"peel_string_end_{k}",
+            "capsule",
+            mid,
+            end,
+            thick,
+            "organic",
+            cheese,
+            visual_only=True,
+        )
+    fibre = "beige" if cheese == "white" else "white"
+    for k, a in enumerate((-0.9, -0.3, 0.35, 0.95)):
+        d.rod(
+            f"fibre_{k}",
+            0.00035,
+            body * 0.7,
+            (x0 - body * 0.45, r * math.sin(a), r + r * math.cos(a)),
+            "organic",
+            fibre,
+            visual_only=True,
+        )
+    others = d.choice([1, 2, 2])
+    wrapped = d.choice([False, True])
+    for k in range(others):
+        y = -2 * r - 0.01 - k * (2 * r + 0.001)  # room for a finger beside the front one
+        x = d.uniform(-0.006, 0.004)
+        d.rod(f"stick_{k}", r, length * 0.9, (x, y, r), "organic", cheese, capsule=True)
+        if wrapped and k == 0:
+            d.rod(
+                "sleeve",
+                r + 0.0007,
+                length * 0.92,
+                (x, y, r),
+                "plastic",
+                "transparent",
+                visual_only=True,
+            )
+            d.rod(
+                "wrapper_band",
+                r + 0.0009,
+                length * 0.4,
+                (x, y, r),
+                "plastic",
+                wrap,
+                visual_only=True,
+                # the cheese alone: a word round a lying stick would read on its side
+                texture=Texture("pictogram", ("white", "yellow"), "cheese"),
+            )
+    colors = (cheese, wrap) if wrapped else (cheese,)
+    return Traits(colors, "organic", "elongated")
 
 
 @revised("bread", 3)

@@ -5,7 +5,8 @@ from __future__ import annotations
 import math
 
 from ..design import Design, Traits
-from ..parts import axis_angle_quat
+from ..parts import axis_angle_quat, quat_mul
+from ..textures import Texture
 from .kitchen import CERAMIC_COLORS
 from .registry import generator, revised
 
@@ -294,33 +295,58 @@ def wire_cutters(d: Design) -> Traits:
 
 @revised("wire_cutters", 3)
 def wire_cutters_3(d: Design) -> Traits:
-    """Revision 3: diagonal cutters biting a length of insulated wire: a short pointed head
-    of two bevelled jaws, a V spring between the handles and dipped two-tone grips (the
-    first, long straight jaws, read as pliers or a can opener)."""
+    """Revision 3: diagonal side cutters: a short, wide, pointed head of two bevelled jaws
+    whose straight cutting edges meet along the middle at an angle to the tip (polished
+    bevels on a darker head, no notches, no holes), a V spring between the handles and
+    dipped two-tone grips (the first, long straight jaws, read as pliers or a can opener;
+    a wire held in the jaws read as wire strippers)."""
     grip = d.choice(["red", "red", "yellow", "blue", "orange", "green"])
     tip = d.choice(["black", "gray"])
-    metal = d.choice(["silver", "silver", "gray"])
+    metal = d.choice(["gray", "gray", "black", "silver"])
+    shine = "white" if metal == "silver" else "silver"  # the ground bevels and edge
     length, spread = d.uniform(0.15, 0.18), d.uniform(0.05, 0.065)
     thick = d.uniform(0.011, 0.013)
     z = thick / 2
     jaw = d.uniform(0.024, 0.028)
     pivot = length / 2 - jaw
-    d.upright("boss", 0.0105, thick, 0.0, "metal", metal, xy=(pivot, 0))
-    d.upright("pivot", 0.004, thick + 0.001, 0.0, "metal", "gray", xy=(pivot, 0))
+    d.upright("boss", 0.0095, thick, 0.0, "metal", metal, xy=(pivot, 0))
+    d.upright("pivot", 0.0035, thick + 0.001, 0.0, "metal", shine, xy=(pivot, 0))
+    nose = (length / 2, 0.0)
     for k, sign in enumerate((-1, 1)):
-        d.ellipsoid(
+        # the jaw: a wedge from the pivot to the point, its cutting edge on the middle line,
+        # the cheek wide at the pivot and tapering to the point in two steps
+        mid = (pivot + jaw * 0.5, sign * 0.0048)
+        d.segment(
             f"jaw_{k}",
-            (jaw * 0.62, 0.0068, z * 0.85),
-            (pivot + jaw * 0.4, sign * 0.0042, z),
+            "box",
+            (pivot, sign * 0.0068, z),
+            (*mid, z),
+            (0.0052, z * 0.9),
             "metal",
             metal,
         )
+        d.segment(
+            f"jaw_point_{k}",
+            "ellipsoid",
+            (mid[0] - 0.008, mid[1] * 1.05, z),
+            (nose[0] + 0.003, sign * 0.0004, z),
+            (0.0036, z * 0.85),
+            "metal",
+            metal,
+        )
+        # the bevel ground along the edge: a polished facet sloping down to it
+        a0 = (pivot + 0.006, sign * 0.0036)
+        along = math.atan2(-sign * 0.0028, nose[0] - 0.002 - a0[0])
+        centre = ((a0[0] + nose[0] - 0.002) / 2, sign * 0.0018, thick * 0.93)
+        quat = quat_mul(axis_angle_quat((0, 0, 1), along), axis_angle_quat((1, 0, 0), sign * 0.45))
+        half = (math.hypot(nose[0] - 0.002 - a0[0], 0.0028) / 2, 0.0026, 0.0006)
+        d.add(f"bevel_{k}", "box", half, centre, "metal", shine, quat=quat)
     d.box(
         "edge",
-        (jaw * 0.42, 0.0004, 0.0002),
-        (pivot + jaw * 0.55, 0, thick - 0.0006),
+        ((nose[0] - pivot - 0.008) / 2, 0.00035, 0.0003),
+        ((nose[0] + pivot + 0.008) / 2, 0, thick * 0.96),
         "metal",
-        "black",
+        "black" if metal != "black" else "gray",
         visual_only=True,
     )
     bend = (pivot - 0.028, 0.0)
@@ -343,11 +369,6 @@ def wire_cutters_3(d: Design) -> Traits:
             "metal",
             "black" if grip != "black" else "silver",
         )
-    insulation = d.choice(["red", "blue", "black", "green", "yellow"])
-    wire_x = pivot + jaw * 0.5
-    d.rod("wire", 0.0022, 0.05, (wire_x, 0.0, z), "plastic", insulation, axis="y")
-    for k, sign in enumerate((-1, 1)):
-        d.rod(f"copper_{k}", 0.0011, 0.008, (wire_x, sign * 0.028, z), "metal", "orange", axis="y")
     return Traits((grip, metal), "metal", "irregular")
 
 
@@ -418,6 +439,58 @@ def coaster(d: Design) -> Traits:
         )
         shape = "flat"
     return Traits((color, pattern), material, shape)
+
+
+CORK = Texture("pores")
+
+
+def _cork_stain(d: Design, radius: float, z: float, center: tuple[float, float]) -> None:
+    """The ring a wet glass left on cork: a darker, uneven, broken circle printed at ``z``."""
+    pieces = 18
+    chord = 2 * radius * math.tan(math.pi / pieces) * 1.05
+    gap = int(d.rng.integers(pieces))
+    for k in range(pieces):
+        if k == gap:  # where the ring dried out
+            continue
+        a = 2 * math.pi * k / pieces
+        pos = (center[0] + radius * math.cos(a), center[1] + radius * math.sin(a), z + 0.00015)
+        width = d.uniform(0.0022, 0.0042)
+        d.box(
+            f"stain_{k}",
+            (width / 2, chord / 2, 0.00015),
+            pos,
+            "paper",
+            "brown",
+            yaw=a,
+            visual_only=True,
+        )
+
+
+@revised("coaster", 3)
+def coaster_3(d: Design) -> Traits:
+    """Revision 3: a cork coaster, its pores showing, with the broken brown ring a wet
+    glass left on it; or a small stack of them; or a slate or ceramic square on a cork base
+    (the smooth disc with a printed ring read as a wireless charger)."""
+    kind = d.choice(["cork", "cork", "stack", "stack", "slate"])
+    cork = d.choice(["beige", "beige", "golden"])
+    size = d.uniform(0.045, 0.05)
+    if kind == "slate":
+        material, color = d.choice([("stone", "black"), ("stone", "gray"), ("ceramic", "white")])
+        thick, base = d.uniform(0.005, 0.006), 0.0045
+        d.slab("cork_base", (size, size, base / 2), 0.0, "wood", cork, texture=CORK)
+        kw = dict(solid_fraction=0.5) if material == "stone" else {}
+        d.slab("top", (size, size, thick / 2), base, material, color, **kw)
+        return Traits((color, cork), material, "flat")
+    thick = d.uniform(0.005, 0.007)
+    layers = 1 if kind == "cork" else d.choice([3, 4])
+    for k in range(layers):  # each one a little askew on the one below
+        xy = (d.uniform(-0.003, 0.003), d.uniform(-0.003, 0.003)) if k else (0.0, 0.0)
+        d.upright(f"disk_{k}", size, thick, k * thick, "wood", cork, xy=xy, texture=CORK)
+    top = layers * thick
+    off = size - 0.036 - 0.004
+    center = (d.uniform(-off, off), d.uniform(-off, off) * 0.5)
+    _cork_stain(d, d.uniform(0.031, 0.035), top, center)
+    return Traits((cork,), "wood", "disk" if layers == 1 else "cylinder")
 
 
 @generator(

@@ -6,6 +6,7 @@ import math
 
 from ..design import Design, Traits
 from ..parts import axis_angle_quat, quat_mul
+from ..textures import Texture
 from .registry import generator, revised
 
 PLASTICS = ["red", "blue", "green", "yellow", "white", "gray", "black", "pink", "orange"]
@@ -140,6 +141,125 @@ def basket(d: Design) -> Traits:
     return Traits((color, weave), material, shape)
 
 
+def _loop_handle(
+    d: Design, name: str, x: float, z: float, span: float, material: str, color: str
+) -> None:
+    """A half-ring handle standing up in the yz plane at ``x``, its feet on z."""
+    n, rho = 6, span / 2
+    for k in range(n):
+        a0, a1 = math.pi * k / n, math.pi * (k + 1) / n
+        p0 = (x, rho * math.cos(a0), z + rho * math.sin(a0))
+        p1 = (x, rho * math.cos(a1), z + rho * math.sin(a1))
+        d.segment(f"{name}_{k}", "capsule", p0, p1, 0.0045, material, color)
+
+
+#: Wicker's woven look, printed on a basket's walls instead of modelled strand by strand.
+WICKER = Texture("weave")
+
+
+def _woven_wall(
+    d: Design,
+    name: str,
+    radius: float,
+    thickness: float,
+    height: float,
+    z0: float,
+    material: str,
+    color: str,
+    segments: int,
+    flare: float,
+) -> None:
+    """``Design.wall`` printed with the weave: a ring of woven boxes, tilted out by ``flare``."""
+    slant = height / math.cos(flare)
+    outer = radius + thickness + math.sin(flare) * slant
+    chord = 2 * outer * math.tan(math.pi / segments) * 1.02
+    r = radius + thickness / 2 + math.sin(flare) * slant / 2
+    for k in range(segments):
+        a = 2 * math.pi * k / segments
+        quat = quat_mul(axis_angle_quat((0, 0, 1), a), axis_angle_quat((0, 1, 0), flare))
+        d.add(
+            f"{name}_{k}",
+            "box",
+            (thickness / 2, chord / 2, slant / 2),
+            (r * math.cos(a), r * math.sin(a), z0 + height / 2),
+            material,
+            color,
+            quat=quat,
+            texture=WICKER,
+        )
+
+
+@revised("basket", 3)
+def basket_3(d: Design) -> Traits:
+    """Revision 3: a woven basket, round or rectangular (wicker, or rattan-look plastic):
+    woven walls (the weave printed on them) over a darker base, a twisted rope rim and a
+    loop handle at each end in the darker cane (the smooth, striped first basket read as a
+    basin, a tub or a washbasin). At most sixty parts."""
+    material = d.choice(["wicker", "wicker", "wicker", "plastic"])
+    h = d.uniform(0.08, 0.12)
+    if material == "wicker":
+        color = d.choice(["golden", "beige", "brown", "golden"])
+        stake = "brown" if color != "brown" else "beige"
+    else:  # rattan-look plastic
+        color, stake = d.choice([("white", "gray"), ("gray", "black"), ("beige", "brown")])
+    t = 0.007
+    woven = dict(texture=WICKER)
+    if d.rng.random() < 0.5:
+        hx, hy = d.uniform(0.1, 0.115), d.uniform(0.075, 0.095)
+        d.box("floor", (hx, hy, t / 2), (0, 0, t / 2), material, stake, **woven)
+        d.frame("wall", (hx, hy), t, t, h - t, material, color, **woven)
+        d.frame("rim", (hx + 0.002, hy + 0.002), t + 0.004, h - 0.01, 0.01, material, stake)
+        count = int(2 * (hx + hy) / 0.027)
+        for k in range(count):  # a twisted rope along the rim
+            f = 2 * (hx + hy) * (k + 0.5) / count
+            if f < 2 * hx:
+                pos, yaw = (-hx + f, hy - t / 2 + 0.001, h + 0.002), 0.0
+            else:
+                pos, yaw = (hx - t / 2 + 0.001, -hy + f - 2 * hx, h + 0.002), math.pi / 2
+            for s in (1, -1):
+                x, y = (pos[0], s * pos[1]) if yaw == 0.0 else (s * pos[0], pos[1])
+                d.add(
+                    f"twist_{k}_{s}",
+                    "ellipsoid",
+                    (0.016, 0.0065, 0.0055),
+                    (x, y, pos[2]),
+                    material,
+                    stake,
+                    quat=quat_mul(axis_angle_quat((0, 0, 1), yaw), axis_angle_quat((0, 1, 0), 0.5)),
+                    visual_only=True,
+                )
+        d.interior((hx - t - 0.004, hy - t - 0.004), floor_z=t, rim_z=h)
+        x_handle, span, shape = hx + 0.004, 2 * hy * 0.55, "cuboid"
+    else:
+        r, flare = d.uniform(0.075, 0.09), d.uniform(0.1, 0.22)
+        n = 16
+        d.upright("floor", r + t, t, 0.0, material, stake, **woven)
+        _woven_wall(d, "wall", r, t, h - t, t, material, color, n, flare)
+        top = r + t + math.tan(flare) * (h - t)
+        rho, count = top - t / 2, 12
+        for k in range(count):  # a rolled rim of cane, twisted round by a binding strand
+            a0, a1 = 2 * math.pi * k / count, 2 * math.pi * (k + 1) / count
+            p0 = (rho * math.cos(a0), rho * math.sin(a0), h + 0.001)
+            p1 = (rho * math.cos(a1), rho * math.sin(a1), h + 0.001)
+            d.segment(f"rim_{k}", "capsule", p0, p1, 0.0055, material, stake)
+            a = (a0 + a1) / 2
+            d.add(
+                f"twist_{k}",
+                "ellipsoid",
+                (0.0066, 0.011, 0.0045),
+                (rho * math.cos(a), rho * math.sin(a), h + 0.001),
+                material,
+                color,
+                quat=quat_mul(axis_angle_quat((0, 0, 1), a), axis_angle_quat((1, 0, 0), 0.9)),
+                visual_only=True,
+            )
+        _round_interior(d, r, t, h)
+        x_handle, span, shape = top + 0.002, 0.06, "cylinder"
+    for k, sign in enumerate((-1, 1)):
+        _loop_handle(d, f"handle_{k}", sign * x_handle, h - 0.006, span, material, stake)
+    return Traits((color, stake), material, shape)
+
+
 @generator(
     "waste_bin",
     size=(0.2, 0.32),
@@ -164,6 +284,111 @@ def waste_bin(d: Design) -> Traits:
         d.interior((hx - 0.01, hy - 0.01), floor_z=t, rim_z=h)
         shape = "cuboid"
     return Traits(tuple(dict.fromkeys((color, rim))), material, shape)
+
+
+def _open_lid_frame(hinge, lean: float, up: float, depth: float):
+    """Centre and axes of a lid hinged along y at ``hinge`` and swung open over the back
+    (-x) to lean ``lean`` rad past upright: its centre ``up`` along the lid from the hinge
+    and ``depth`` behind its inner face."""
+    n = (math.cos(lean), 0.0, math.sin(lean))  # the inner face's normal
+    u = (-math.sin(lean), 0.0, math.cos(lean))  # up the lid, away from the hinge
+    c = tuple(hinge[i] - n[i] * depth + u[i] * up for i in range(3))
+    return c, n
+
+
+@revised("waste_bin", 3)
+def waste_bin_3(d: Design) -> Traits:
+    """Revision 3: a pedal bin, its lid standing open on a hinge at the back, a foot pedal at
+    the front and a bin bag lining it, turned over the rim with its slack bunching below
+    (the plain open bin read as a cup or a paper cup). Round, or slim and rectangular; the
+    round one on a plinth, its walls in few facets (at most sixty parts)."""
+    material, color = _metal_or_plastic(d, ["white", "gray", "black", "red", "beige", "blue"])
+    bag = d.choice(["black", "black", "gray", "white"] if color != "black" else ["gray", "white"])
+    trim = "black" if color != "black" else "gray"
+    t = 0.0015 if material == "aluminium" else 0.003
+    lean = d.uniform(0.03, 0.12)  # the open lid leans back a little past upright
+    lid_t = 0.005
+    drop = d.uniform(0.025, 0.04)  # the bag's fold over the rim
+    kw = dict(visual_only=True)
+    if d.rng.random() < 0.5:
+        r = d.uniform(0.073, 0.077)
+        h = d.uniform(0.13, 0.145)
+        base, n = 0.012, 14  # the bin stands on a plinth ring; few wall facets
+        out = r + t
+        d.upright("foot_ring", out + 0.003, base + 0.002, 0.0, "plastic", trim)
+        _vessel(d, r, h - base, t, 0.004, material, color, z0=base, segments=n)
+        lining = h - drop - base - 0.003  # the bag inside, up to its fold
+        d.wall("bag_lining", r - 0.0012, 0.0011, lining, base + 0.005, "plastic", bag, segments=n)
+        # the bag turned over the rim: one band wrapping it inside, over the top and out
+        fold_t = out + 0.0015 - (r - 0.0012)
+        fold_z = h - drop + 0.002
+        d.wall("bag_fold", r - 0.0012, fold_t, drop + 0.0005, fold_z, "plastic", bag, segments=n)
+        for k in range(5):  # slack of the bag bunching below the fold
+            a = 2 * math.pi * (k + d.uniform(0.2, 0.8)) / 5
+            rho = out + 0.0015
+            d.add(
+                f"bag_sag_{k}",
+                "ellipsoid",
+                (0.004, d.uniform(0.012, 0.02), d.uniform(0.006, 0.012)),
+                (rho * math.cos(a), rho * math.sin(a), h - drop + 0.002),
+                "plastic",
+                bag,
+                quat=axis_angle_quat((0, 0, 1), a),
+                **kw,
+            )
+        lid_r = out + 0.004
+        hinge = (-(out + 0.007), 0.0, h + 0.004)
+        c, n = _open_lid_frame(hinge, lean, lid_r + 0.003, lid_t / 2)
+        quat = axis_angle_quat((0, 1, 0), -lean)  # a disc, its axis along x, tilted back
+        d.add("lid", "cylinder", (lid_r, lid_t / 2), c, material, color, quat=quat)
+        top = lid_r
+        _round_interior(d, r, base + 0.004, h)
+        shape = "cylinder"
+    else:  # slim: the lid hinges on a long side
+        out, hy = d.uniform(0.062, 0.068), d.uniform(0.088, 0.1)
+        h = d.uniform(0.16, 0.175)
+        _tray(d, out, hy, h, t, material, color)
+        d.frame("foot_ring", (out + 0.003, hy + 0.003), 0.004, 0.0, 0.014, "plastic", trim)
+        d.frame("bag_lining", (out - t, hy - t), 0.0011, 0.005, h - 0.006, "plastic", bag)
+        d.frame(
+            "bag_fold", (out + 0.0015, hy + 0.0015), 0.0015, h - drop + 0.002, drop, "plastic", bag
+        )
+        d.frame("bag_lip", (out + 0.0027, hy + 0.0027), t + 0.004, h, 0.0025, "plastic", bag)
+        for k in range(4):
+            x, y = (k % 2 - 0.5) * out * 1.2, (1 if k // 2 else -1) * (hy + 0.0028)
+            if k == 3:
+                x, y = out + 0.0028, d.uniform(-0.5, 0.5) * hy
+            half = (0.004, d.uniform(0.012, 0.02)) if k == 3 else (d.uniform(0.012, 0.02), 0.004)
+            sag = d.uniform(0.006, 0.012)
+            d.ellipsoid(
+                f"bag_sag_{k}", (*half, sag), (x, y, h - drop + 0.002), "plastic", bag, **kw
+            )
+        hinge = (-(out + 0.007), 0.0, h + 0.004)
+        c, n = _open_lid_frame(hinge, lean, out + 0.006, lid_t / 2)
+        quat = axis_angle_quat((0, 1, 0), math.pi / 2 - lean)
+        d.add("lid", "box", (out + 0.004, hy + 0.004, lid_t / 2), c, material, color, quat=quat)
+        top = out + 0.004
+        d.interior((out - 0.01, hy - 0.01), floor_z=t, rim_z=h)
+        shape = "cuboid"
+    d.box("hinge", (0.006, 0.024, 0.008), (-(out + 0.004), 0, h - 0.004), "plastic", trim)
+    # a lip at the lid's free edge, to lift it by hand
+    u = (-math.sin(lean), 0.0, math.cos(lean))
+    tab = tuple(c[i] + u[i] * (top - 0.004) + n[i] * (lid_t / 2 + 0.003) for i in range(3))
+    tilt = axis_angle_quat((0, 1, 0), -lean)
+    d.add("lid_tab", "box", (0.003, 0.018, 0.004), tab, "plastic", trim, quat=tilt)
+    # the foot pedal, stepped on to lift the lid
+    width = d.uniform(0.045, 0.06)
+    d.box("pedal_arm", (0.008, 0.006, 0.004), (out + 0.007, 0, 0.01), "plastic", trim)
+    d.add(
+        "pedal",
+        "box",
+        (0.011, width / 2, 0.0035),
+        (out + 0.019, 0, 0.012),
+        material,
+        color,
+        quat=axis_angle_quat((0, 1, 0), -0.2),
+    )
+    return Traits(tuple(dict.fromkeys((color, bag))), material, shape)
 
 
 @generator(
@@ -610,7 +835,8 @@ def placemat(d: Design) -> Traits:
 def placemat_3(d: Design) -> Traits:
     """Revision 3: a woven or wipe-clean mat printed with a place setting (a plate between a
     fork and a knife, a glass above the knife), a fabric one fringed at its short ends (the
-    slatted first mat read as a bamboo mat)."""
+    slatted first mat read as a bamboo mat). The plate and glass are printed as stacked
+    discs, the fringe as a few tassels: at most sixty parts."""
     material = d.choice(["fabric", "fabric", "plastic", "plastic"])
     color = d.choice(["red", "blue", "green", "white", "gray", "beige", "pink", "orange"])
     hem = d.choice([color, "white"] if color != "white" else ["white", "gray", "blue"])
@@ -622,8 +848,16 @@ def placemat_3(d: Design) -> Traits:
     z = thick + 0.0028
     kw = dict(visual_only=True)
     plate = min(hy - 0.022, hx * 0.5)
-    d.flat_ring("plate_rim", plate - 0.006, 0.006, 0.0003, z, "plastic", ink, segments=24, **kw)
-    d.flat_ring("plate_well", plate * 0.62, 0.002, 0.0003, z, "plastic", ink, segments=20, **kw)
+
+    def disc(name: str, radius: float, layer: int, tint: str, center=(0.0, 0.0)) -> None:
+        """A printed disc; a later layer prints over an earlier one (a ring: two discs)."""
+        zk = z + 0.0002 * layer
+        d.upright(name, radius, 0.0002, zk, "plastic", tint, xy=center, **kw)
+
+    disc("plate_rim", plate, 0, ink)
+    disc("plate_face", plate - 0.006, 1, color)
+    disc("plate_well", plate * 0.62 + 0.002, 2, ink)
+    disc("plate_well_face", plate * 0.62, 3, color)
     fx, kx = -plate - 0.018, plate + 0.016
     span = plate * 0.95
     d.box("fork_handle", (0.0025, span * 0.55, 0.0002), (fx, span * 0.42, z), "plastic", ink, **kw)
@@ -647,26 +881,18 @@ def placemat_3(d: Design) -> Traits:
         ink,
         **kw,
     )
-    d.flat_ring(
-        "glass_print",
-        0.012,
-        0.003,
-        0.0003,
-        z,
-        "plastic",
-        ink,
-        segments=14,
-        center=(kx + 0.006, -hy + 0.022),
-        **kw,
-    )
-    if fringe:
+    glass = (kx + 0.006, -hy + 0.022)
+    disc("glass_print", 0.015, 0, ink, center=glass)
+    disc("glass_face", 0.012, 1, color, center=glass)
+    if fringe:  # tassels of loose threads at the short ends
+        tassels = 12
         for k, sign in enumerate((-1, 1)):
-            for j in range(int((2 * hy - 0.01) / 0.006)):
-                y = -hy + 0.008 + j * 0.006
+            for j in range(tassels):
+                y = -hy + 0.007 + j * (2 * hy - 0.014) / (tassels - 1)
                 d.box(
                     f"fringe_{k}_{j}",
-                    (0.006, 0.0012, 0.0006),
-                    (sign * (hx + 0.006), y, 0.0006),
+                    (0.008, 0.0028, 0.0006),
+                    (sign * (hx + 0.008), y, 0.0006),
                     "fabric",
                     hem,
                     **kw,

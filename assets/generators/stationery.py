@@ -245,7 +245,7 @@ def glue_stick_3(d: Design) -> Traits:
         )
     body_h = h - twist - d.uniform(0.01, 0.013)
     ink = "white" if body in ("blue", "purple", "green", "red") else "blue"
-    band = Texture("label", (ink, body if ink == "white" else "white"))
+    band = Texture("label_around_glue", (ink, body if ink == "white" else "white"))
     d.upright("body", r, body_h, twist, "plastic", body, solid_fraction=0.6, texture=band)
     d.upright("rim", r + 0.0003, 0.0015, twist + body_h - 0.0015, "plastic", body, visual_only=True)
     stick = h - twist - body_h
@@ -650,7 +650,7 @@ def staples_box_3(d: Design) -> Traits:
         visual_only=True,
         texture=picture,
     )
-    front = Texture("sticker", (label, "silver"), "staple")
+    front = Texture("sticker_words_staples", (label, "silver"), "staple")
     d.box(
         "front_print",
         (lx * 0.42, 0.0002, h * 0.38),

@@ -176,6 +176,55 @@ def pliers(d: Design) -> Traits:
     return Traits((grip, steel), "metal", "elongated")
 
 
+@revised("pliers", 3)
+def pliers_3(d: Design) -> Traits:
+    """Revision 3: pliers lying flat, seen from above: two handles in rubber sleeves with
+    flared ends spreading wide in a V from a round pivot with a rivet, and short tapering
+    jaws (long and slender on needle-nose pliers) closed to a point, with serrated teeth
+    and the rounded grip opening by the pivot (the first, nearly parallel arms, read as a
+    clothespin or a hair straightener)."""
+    grip = d.choice(GRIPS)
+    steel = d.choice(["silver", "silver", "gray", "black"])
+    needle = d.choice([True, False])
+    length, t = d.uniform(0.15, 0.2), d.uniform(0.009, 0.011)
+    jaw = length * d.uniform(0.33, 0.38) if needle else length * d.uniform(0.22, 0.26)
+    handle, spread = length - jaw, d.uniform(0.03, 0.036)
+    jaw_w = 0.0035 if needle else 0.0055
+    d.upright("pivot", 0.011, t, 0.0, "metal", steel)
+    d.upright("rivet", 0.0045, t + 0.001, 0.0, "metal", "silver")
+    d.upright("rivet_slot", 0.0015, 0.0003, t + 0.001, "metal", "black", visual_only=True)
+    r = t / 2 + 0.0012
+    d.box(
+        "jaw_seam",
+        ((jaw - 0.016) / 2, 0.0004, 0.0003),
+        ((jaw + 0.016) / 2, 0, t * 0.92),
+        "metal",
+        "black",
+        visual_only=True,
+    )
+    for k, s in enumerate((-1, 1)):
+        root, tip = (-0.004, s * jaw_w * 0.9, t / 2), (jaw, s * 0.0006, t / 2)
+        d.segment(f"jaw_{k}", "ellipsoid", root, tip, (jaw_w, t / 2), "metal", steel)
+        d.upright(
+            f"grip_hole_{k}",
+            0.0022,
+            0.0004,
+            t * 0.92,
+            "metal",
+            "black",
+            xy=(0.014, s * 0.0028),
+            visual_only=True,
+        )
+        bend = (-handle * 0.25, s * spread * 0.45, t / 2)
+        d.segment(
+            f"arm_{k}", "box", (-0.006, s * 0.006, t / 2), bend, (0.004, t * 0.4), "metal", steel
+        )
+        end = (-handle + r, s * spread, r)
+        d.segment(f"grip_{k}", "capsule", (bend[0], bend[1], r), end, r, "rubber", grip)
+        d.sphere(f"grip_flare_{k}", r * 1.25, (end[0] - r * 0.3, end[1], r * 1.25), "rubber", grip)
+    return Traits((grip, steel), "metal", "elongated")
+
+
 @generator("mini_hammer", size=(0.14, 0.26), synonyms=("hammer", "mini hammer", "small hammer"))
 def mini_hammer(d: Design) -> Traits:
     steel = d.choice(["silver", "silver", "gray", "black"])
