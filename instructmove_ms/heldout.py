@@ -41,8 +41,8 @@ from .verify import verify
 
 EPISODES_PER_SET = 100
 #: The stored set versions (``--set-version``) and the one evaluation uses by default.
-SET_VERSIONS = (2, 3, 4, 5)
-SET_VERSION = 5
+SET_VERSIONS = (2, 3, 4, 5, 6)
+SET_VERSION = 6
 #: Seeds tried per kept episode at most (seeds whose scenes hide a candidate are skipped).
 SEEDS_PER_EPISODE = 5
 #: Each version's file of its set files' SHA-256 (``instructmove doctor`` checks them).

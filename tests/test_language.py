@@ -77,10 +77,12 @@ def test_every_stored_instruction_agrees_with_its_target():
                         continue
                     target = catalog[spec.target_object.uuid]
                     named = [n for n in target.nouns if f" {n} " in spaced(spec.instruction)]
-                    expected = "them" if is_plural(max(named, key=len)) else "it"
+                    pair = " pair of " in spaced(spec.instruction)  # one pair of ...
+                    expected = "them" if is_plural(max(named, key=len)) and not pair else "it"
                     assert match.group(1) == expected, spec.instruction
                     seen[expected] += 1
-    assert seen["them"] >= 5 and seen["it"] >= 100, seen
+    # only the place templates say a pronoun ("put it in the bowl")
+    assert seen["them"] >= 2 and seen["it"] >= 100, seen
 
 
 def _instances(category: str):
