@@ -45,6 +45,9 @@ def _answers(tmp_path, name, lines):
         ("remote control", "ac_remote", False),  # fits any remote
         ("remote control", "tv_remote", True),
         ("", "mug", False),
+        ("egg in an egg cup", "egg", True),  # a prepositional phrase after the noun
+        ("phone on a stand", "phone_stand", False),  # names the phone
+        ("glass of juice", "spice_jar", False),
     ],
 )
 def test_a_first_guess_names_a_category_by_the_written_rules(answer, category, named):

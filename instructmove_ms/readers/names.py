@@ -50,10 +50,17 @@ def first_guess(answer: str) -> str:
 
 
 def names_category(answer: str, category: str) -> bool:
-    """Whether the first guess of ``answer`` is one of ``category``'s accepted names or ends
-    with one as whole words ("red coffee mug" names a mug)."""
+    """Whether the first guess of ``answer``, up to a prepositional phrase after its noun,
+    is one of ``category``'s accepted names or ends with one as whole words ("red coffee
+    mug" names a mug, "egg in an egg cup" an egg)."""
     names = accepted_names()
     if category not in names:
         raise ValueError(f"unknown category {category!r}; names.yaml lists {len(names)}")
-    guess = normalise(first_guess(answer))
+    guess = head_phrase(normalise(first_guess(answer)))
     return any(guess == n or guess.endswith(f" {n}") for n in names[category])
+
+
+def head_phrase(guess: str) -> str:
+    """``guess`` without a prepositional phrase after its noun ("egg in egg cup" names an
+    egg, "pen holder with pen" a pen holder)."""
+    return re.split(r" (?:in|on|with) ", guess, maxsplit=1)[0]
