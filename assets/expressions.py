@@ -203,8 +203,11 @@ def contents(noun: str) -> str:
 
 def material_package(inst: Instance) -> str | None:
     """The package that says ``inst``'s material ("carton" of juice for paper, "bottle" for
-    plastic), where each material of its category comes in a package of its own."""
-    own = {m: p for (c, m), p in PACKAGES.items() if c == inst.category}
+    plastic; "packet" of cookies beside a bare cookie), where each packaging material of its
+    category comes in a package of its own."""
+    if inst.material == "organic":  # the food itself: no package says it
+        return None
+    own = {m: p for (c, m), p in PACKAGES.items() if c == inst.category and m != "organic"}
     package = own.get(inst.material)
     if package is None or package == "wrapper" or list(own.values()).count(package) > 1:
         return None

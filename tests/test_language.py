@@ -164,3 +164,10 @@ def test_a_packaged_foods_material_is_its_package():
     juices = {i.material: i for i in _instances("juice")}
     assert attribute_phrases(juices["paper"], "material") == ["carton of juice"]
     assert attribute_phrases(juices["plastic"], "material") == ["bottle of juice"]
+    biscuits = {i.material: i for i in _instances("biscuit")}
+    assert attribute_phrases(biscuits["paper"], "material") == [
+        "packet of cookies",
+        "packet of biscuits",
+    ]
+    with pytest.raises(ValueError, match="no material phrase"):
+        attribute_phrases(biscuits["organic"], "material")  # never "the paper biscuit"

@@ -12,6 +12,7 @@ import pytest
 
 from instructmove_ms.assets import load_snapshot
 from instructmove_ms.assets.catalog import Catalog
+from instructmove_ms.heldout import SET_VERSION
 from instructmove_ms.readers import material
 from instructmove_ms.readers.briefs import BRIEFS
 from instructmove_ms.readers.names import accepted_names, first_guess, names_category, normalise
@@ -156,7 +157,8 @@ def test_instructions_and_episodes_are_drawn_from_the_seed(tmp_path):
     again = json.loads(material.instructions(8, tmp_path / "b", count=4).read_text())
     assert first == again
     sources = [i["source"].split("/")[0] for i in first["items"]]
-    assert sorted(sources) == ["train", "train", "v5", "v5"]
+    stored = f"v{SET_VERSION}"
+    assert sorted(sources) == ["train", "train", stored, stored]
     listed = (tmp_path / "a" / "reader" / "instructions.txt").read_text().splitlines()
     assert listed == [f"{i['n']}: {i['instruction']}" for i in first["items"]]
 
