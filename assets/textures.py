@@ -197,17 +197,24 @@ def _badge(img, inks, motif) -> None:
     _motif(img, motif, c, int(0.26 * r), COLORS[inks[-1]])
 
 
-def _wave(img, inks, motif) -> None:
-    """A ribbon waving around (a whole number of times, seamless where a cylinder's side
-    closes) under wordmarks, all in the first ink."""
+def _ribbon(img: np.ndarray, ink: str) -> None:
+    """A ribbon in ``ink`` waving around the lower third (a whole number of times, seamless
+    where a cylinder's side closes)."""
     h, w = img.shape[:2]
     waves = max(1, round(w / (2 * h)))
     xs = np.arange(0, w + 1, 4)
     ys = h * (0.66 + 0.1 * np.sin(2 * math.pi * waves * xs / w))
     upper = np.stack([xs, ys - 0.06 * h], axis=1)
     lower = np.stack([xs[::-1], ys[::-1] + 0.06 * h], axis=1)
-    ink = _bgr(COLORS[inks[0]])
-    cv2.fillPoly(img, [np.concatenate([upper, lower]).astype(np.int32)], ink, cv2.LINE_AA)
+    cv2.fillPoly(
+        img, [np.concatenate([upper, lower]).astype(np.int32)], _bgr(COLORS[ink]), cv2.LINE_AA
+    )
+
+
+def _wave(img, inks, motif) -> None:
+    """A ribbon waving around (a whole number of times, seamless where a cylinder's side
+    closes) under wordmarks, all in the first ink."""
+    _ribbon(img, inks[0])
     _sticker(img, inks, "", y=0.34)
 
 
@@ -467,14 +474,7 @@ def _label_with(img, inks, motif, write: Writer, front: float | None = None) -> 
 
 def _wave_with(img, inks, motif, write: Writer, front: float | None = None) -> None:
     """``_wave``'s ribbon under ``write``'s words, all in the first ink."""
-    h, w = img.shape[:2]
-    waves = max(1, round(w / (2 * h)))
-    xs = np.arange(0, w + 1, 4)
-    ys = h * (0.66 + 0.1 * np.sin(2 * math.pi * waves * xs / w))
-    upper = np.stack([xs, ys - 0.06 * h], axis=1)
-    lower = np.stack([xs[::-1], ys[::-1] + 0.06 * h], axis=1)
-    ink = _bgr(COLORS[inks[0]])
-    cv2.fillPoly(img, [np.concatenate([upper, lower]).astype(np.int32)], ink, cv2.LINE_AA)
+    _ribbon(img, inks[0])
     _sticker_with(img, inks, "", write, y=0.34, front=front)
 
 
