@@ -681,9 +681,9 @@ def mini_sculpture_3(d: Design) -> Traits:
     return _sculpture_3(d)
 
 
-def _sculpture(d: Design, fifth: str) -> Traits:
-    """A small sculpture on a plinth: a figure, a cairn, a twisted stack, a ring, or the
-    ``fifth`` kind (an orb or a bust)."""
+def _plinth(d: Design) -> tuple[str, str, float, str, float, float]:
+    """A sculpture's material, colour and solid fill, and its plinth (colour, width,
+    height), built."""
     material = d.choice(["stone", "stone", "ceramic", "metal", "wood"])
     color = d.choice(
         {
@@ -701,6 +701,13 @@ def _sculpture(d: Design, fifth: str) -> Traits:
         d.slab("plinth", (pw / 2, pw / 2, ph / 2), 0.0, plinth_mat, plinth)
     else:
         d.upright("plinth", pw / 2, ph, 0.0, plinth_mat, plinth)
+    return material, color, fill, plinth, pw, ph
+
+
+def _sculpture(d: Design, fifth: str) -> Traits:
+    """A small sculpture on a plinth: a figure, a cairn, a twisted stack, a ring, or the
+    ``fifth`` kind (an orb or a bust)."""
+    material, color, fill, plinth, pw, ph = _plinth(d)
     look = (material, color)
     kind = d.choice(["figure", "cairn", "twist", "ring", fifth])
     if kind == "figure":
@@ -769,23 +776,7 @@ def _sculpture(d: Design, fifth: str) -> Traits:
 
 def _sculpture_3(d: Design) -> Traits:
     """``_sculpture`` with a bust, and a standing figure with raised arms for the ring."""
-    material = d.choice(["stone", "stone", "ceramic", "metal", "wood"])
-    color = d.choice(
-        {
-            "stone": ["white", "gray", "black", "beige"],
-            "ceramic": ["white", "blue", "black", "green"],
-            "metal": ["golden", "silver", "black"],
-            "wood": ["brown", "beige"],
-        }[material]
-    )
-    fill = 0.3 if material == "metal" else 1.0
-    plinth_mat = d.choice(["wood", "stone"])
-    plinth = d.choice(["brown", "black"] if plinth_mat == "wood" else ["black", "white", "gray"])
-    pw, ph = d.uniform(0.035, 0.055), d.uniform(0.012, 0.022)
-    if d.rng.random() < 0.5:
-        d.slab("plinth", (pw / 2, pw / 2, ph / 2), 0.0, plinth_mat, plinth)
-    else:
-        d.upright("plinth", pw / 2, ph, 0.0, plinth_mat, plinth)
+    material, color, fill, plinth, pw, ph = _plinth(d)
     look = (material, color)
     kind = d.choice(["figure", "cairn", "twist", "raised", "bust"])
     if kind == "figure":
