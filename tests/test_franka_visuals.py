@@ -17,6 +17,7 @@ import imageio.v2 as imageio
 import numpy as np
 import pytest
 import torch
+import trimesh
 from mani_skill.agents.robots.panda.panda import Panda
 
 from instructmove_ms.agents.franka import FrankaInstructMove
@@ -90,6 +91,23 @@ def test_the_light_description_is_maniskills_but_for_its_visual_meshes():
         assert (ours.parent / "meshes" / "collision" / name).read_bytes() == source.read_bytes()
     srdf = ours.with_suffix(".srdf").read_bytes()  # the loader reads it beside the URDF
     assert srdf == theirs.with_suffix(".srdf").read_bytes()
+
+
+def test_light_visual_meshes_are_one_sided_where_maniskills_are_double_sided():
+    """A renderer culls the back faces of the light meshes only (no camera sees them)."""
+
+    def sides(urdf: Path) -> set:
+        names = {name for kind, name in MESH.findall(urdf.read_text()) if kind == "visual"}
+        folder = next(p for p in urdf.parent.rglob("visual") if (p / min(names)).exists())
+        parts = [
+            g
+            for name in names
+            for g in trimesh.load(folder / name, force="scene").geometry.values()
+        ]
+        return {bool(g.visual.material.doubleSided) for g in parts}
+
+    assert sides(Path(Panda.urdf_path)) == {True}
+    assert sides(Path(FrankaInstructMove.urdf_path)) == {False}
 
 
 def test_the_light_description_moves_as_the_full_one(monkeypatch):

@@ -5,12 +5,16 @@
 
 The URDF is ManiSkill's with two changes only: its visual meshes are ours, each part of each
 link's mesh decimated to ``KEEP`` of its triangles (at least ``MIN_TRIANGLES``) with its own
-material, and its mesh paths point into this folder. Collision meshes are copied byte for
-byte, the SRDF beside it (the link pairs that never collide) is ManiSkill's, and joints,
-inertials and limits are ManiSkill's text, so physics is unchanged (the same bits); only what
-the cameras show is lighter (a 224 x 224 picture cannot show 135k triangles). The meshes and
-PROVENANCE.md are committed; ``tests/test_franka_visuals.py`` holds them to the full
-meshes' pictures and to ManiSkill's URDF.
+material drawn one-sided, and its mesh paths point into this folder. Collision meshes are
+copied byte for byte, the SRDF beside it (the link pairs that never collide) is ManiSkill's,
+and joints, inertials and limits are ManiSkill's text, so physics is unchanged (the same
+bits); only what the cameras show is lighter (a 224 x 224 picture cannot show 135k
+triangles). The meshes and PROVENANCE.md are committed; ``tests/test_franka_visuals.py``
+holds them to the full meshes' pictures and to ManiSkill's URDF.
+
+ManiSkill's meshes declare their materials double-sided, so a renderer draws every back face
+too; the links are shells seen from outside, whose back faces a camera never shows, and a CPU
+rasteriser pays for them (about a third of the robot's render): ours are one-sided.
 """
 
 from __future__ import annotations
@@ -39,12 +43,19 @@ CREASE = np.deg2rad(30.0)
 MESH = re.compile(r'filename="franka_description/meshes/(visual|collision)/([^"]+)"')
 
 
+def one_sided(part: trimesh.Trimesh) -> trimesh.Trimesh:
+    """``part`` (changed in place) with its material drawn one-sided (back faces culled)."""
+    part.visual.material = part.visual.material.copy()
+    part.visual.material.doubleSided = False
+    return part
+
+
 def decimated(part: trimesh.Trimesh, keep: float) -> trimesh.Trimesh:
-    """``part`` with ``keep`` of its triangles, its material, and normals creased at edges
-    sharper than ``CREASE``."""
+    """``part`` with ``keep`` of its triangles, its material (one-sided), and normals creased
+    at edges sharper than ``CREASE``."""
     target = max(MIN_TRIANGLES, int(len(part.faces) * keep))
     if target >= len(part.faces):
-        return part
+        return one_sided(part.copy())
     welded = part.copy()  # the file repeats a vertex per corner: weld them to collapse edges
     welded.merge_vertices(merge_tex=True, merge_norm=True)
     points, faces = fast_simplification.simplify(
@@ -52,17 +63,12 @@ def decimated(part: trimesh.Trimesh, keep: float) -> trimesh.Trimesh:
     )
     light = trimesh.graph.smooth_shade(trimesh.Trimesh(points, faces), angle=CREASE)
     light.visual = trimesh.visual.TextureVisuals(material=part.visual.material)
-    return light
+    return one_sided(light)
 
 
 def light_glb(source: Path, target: Path) -> tuple[int, int]:
-    """Write the decimated copy of visual mesh ``source`` (a copy where it keeps all);
-    (triangles before, after)."""
+    """Write the decimated copy of visual mesh ``source``; (triangles before, after)."""
     keep = KEEP_OF.get(source.name, KEEP)
-    if keep >= 1.0:
-        shutil.copyfile(source, target)
-        count = sum(len(g.faces) for g in trimesh.load(source, force="scene").geometry.values())
-        return count, count
     scene = trimesh.load(source, force="scene")
     out = trimesh.Scene()
     before = after = 0
@@ -118,8 +124,10 @@ Made by `generate.py` in this folder: the URDF text is ManiSkill's with mesh pat
 here, and the SRDF beside it is ManiSkill's; collision meshes are copied byte for byte; each
 part of each visual mesh is decimated
 by quadric edge collapse (fast-simplification) to {keep:.0%} of its triangles (the hand, seen
-from a few centimetres by the wrist camera, to {hand:.0%}; the fingers are copied whole), at
-least {floor}, keeping its material, with normals creased at edges sharper than 30 degrees.
+from a few centimetres by the wrist camera, to {hand:.0%}; the fingers keep all theirs), at
+least {floor}, keeping its material but drawn one-sided (ManiSkill's are double-sided: a
+renderer draws the back faces of every shell, which no camera sees), with normals creased at
+edges sharper than 30 degrees.
 
 | visual mesh | triangles | light | source sha256 (16) |
 |---|---|---|---|
