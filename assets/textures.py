@@ -361,6 +361,7 @@ WORDS: dict[str, tuple[str, ...]] = {
     "glue": ("GLUE",),
     "eraser": ("ERASER",),
     "staples": ("STAPLES",),
+    "cheese": ("STRING", "CHEESE"),
 }
 #: The Hershey font words are printed in (pure integer rasterisation: the same pixels on
 #: every machine; no font file).

@@ -37,18 +37,18 @@ REVISED_3_BATH: dict[str, tuple[str, str | None]] = {
 }
 #: ... groceries and stationery ...
 REVISED_3_DESK: dict[str, tuple[str, str | None]] = {
-    "cheese_sticks": ("peel_string_0", None),  # string cheese, one peeled into strings
+    "cheese_sticks": ("pack_band", None),  # a band printed STRING CHEESE, one stick peeled
     "garlic": ("loose_clove", None),  # a loose clove beside the head
     "hair_clip": ("handle_lip_0", None),  # a claw clip: squeeze handles above the hinge
     "nail_clipper": ("thumb_pad", None),  # the lever arching back to a thumb pad
     "egg": ("cup_foot", None),  # standing in an egg cup
-    "pliers": ("grip_flare_0", None),  # V handles with flared grips
+    "pliers": ("pipe_grip", "black"),  # combination pliers: flat serrated nose, pipe grip
     "bread": ("slice_0", None),  # a sliced loaf (or a slashed baguette)
     "potato": ("knob_0", None),
     "peach": ("cheek_0", None),  # the cleft
     "candy": ("pleat_0_0", None),  # the bow-tie twist ends
     "glue_stick": ("glue", None),  # open, the glue twisted up
-    "sticky_notes": ("curl", None),  # the top note peeling up
+    "sticky_notes": ("lifted_note", None),  # a square pad, the top note lifting a little
     "staples_box": ("strip_0", None),  # a strip of staples beside the carton
     "pen_holder": ("pen_0", None),  # pens standing in it
     "eraser": ("card_sleeve", None),
@@ -59,26 +59,28 @@ REVISED_3_DESK: dict[str, tuple[str, str | None]] = {
     "juice": ("label", None),  # JUICE beside the fruit (and on the carton's band)
     "milk_carton": ("print", None),  # MILK beside the drop
     "potato_chips": ("label", None),  # CHIPS beside the chip
-    "coaster": ("stain_1", "brown"),  # cork, ringed where a glass stood (or slate on cork)
+    "coaster": ("stain_1", "brown"),  # a stack of cork coasters, a glass's ring on the top
+    "tomato": ("lobe_0", None),  # red lobes round a dimple, a green star calyx
 }
 #: ... electronics, bedroom, kitchenware, living-room, receptacles and tools.
 REVISED_3_ROOM: dict[str, tuple[str, str | None]] = {
     "remote_holder": ("remote_0", None),  # TV remotes standing in its pockets
     "glasses_case": ("lens_0", "transparent"),  # open, a pair of glasses inside
-    "presenter_clicker": ("page_key_0", None),  # back and forward keys with chevrons
+    "presenter_clicker": ("arrow_0_0", None),  # slim, big back/forward arrow keys, laser tip
     "ac_remote": ("snowflake_0", "blue"),  # the display shows a temperature and a snowflake
     "earbud_case": ("bud_0", None),  # open, the earbuds seated inside
     "mini_sculpture": ("arm_0", None),  # a figure with raised arms for the ring
-    "lunch_box": ("sandwich_0_1", None),  # a bento packed with lunch
+    "lunch_box": ("umeboshi", "red"),  # a bento: rice with a red plum, side dishes
     "placemat": ("fork_head", None),  # printed with a place setting
-    "wire_cutters": ("bevel_0", None),  # diagonal cutters: a short pointed, bevelled head
+    "wire_cutters": ("bevel_0", None),  # diagonal cutters: a fat bevelled head, open a little
     "peeler": ("slot", "black"),  # a slotted blade
     "hex_key": ("clip", None),  # a set of L keys in a clip
-    "candle_holder": ("flame", "yellow"),  # a lit candle in it
+    "candle_holder": ("stub", None),  # a candlestick or chamberstick, a short unlit stub
     "basket": ("handle_0_0", None),  # woven, a twisted rim and a loop handle at each end
     "waste_bin": ("pedal", None),  # a pedal bin, its lid open, a bag over the rim
-    "storage_box": ("clip_handle_0", None),  # lid open on a hinge, clip handles at the ends
-    "phone_stand": ("phone", None),  # a smartphone standing on it, icons on its screen
+    "storage_box": ("latch_00", None),  # clear tub, lid pushed half off, side clip latches
+    "phone_stand": ("hinge_top", None),  # an empty folding stand: back plate, lip, hinges
+    "stamp": ("die", "red"),  # a knob-handled wooden stamp on a red rubber die
 }
 #: The reprinted categories of revision 3: their part shows it by printing words (a
 #: pattern of ``textures.PRINTED_WORDS``) where the same part drew a wordmark before.

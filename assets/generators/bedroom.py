@@ -89,89 +89,84 @@ def storage_box(d: Design) -> Traits:
 
 @revised("storage_box", 3)
 def storage_box_3(d: Design) -> Traits:
-    """Revision 3: a lidded plastic storage box: a stacking rim, its lid standing open on a
-    hinge at the back (a skirt round its edge and latch tabs), flip clip handles at the ends
-    and a label card on the front (the fabric box's weave read as a wire basket)."""
-    color = d.choice(["transparent", "transparent", "white", "gray", "blue", "pink"])
-    if color == "transparent":
-        lid = d.choice(["blue", "white", "gray", "green", "purple", "red"])
-    else:
-        lid = d.choice([color, color, "white"] if color != "white" else ["white", "blue", "gray"])
+    """Revision 3: a clear plastic storage tub (a flat stacking flange round its top, a
+    ledge round its middle, a label window on a long side) with its coloured snap-on lid
+    pushed half off towards one end, the clip latches on its long sides still hooked over
+    the rim; no handle on top (the lid standing open on a hinge read as a toolbox)."""
+    color = d.choice(["transparent", "transparent", "transparent", "white"])
+    lid = d.choice(["blue", "blue", "green", "purple", "red", "gray", "black"])
     material, t = "plastic", 0.003
-    hx, hy, h = d.uniform(0.1, 0.16), d.uniform(0.08, 0.1), d.uniform(0.1, 0.14)
-    floor = d.open_box("box", (hx, hy), h, t, material, color, full="y")
-    flange = 0.006
-    d.frame("rim", (hx + flange, hy + flange), flange + t, h - 0.01, 0.01, material, color)
-    d.frame("foot", (hx - 0.004, hy - 0.004), 0.004, -0.004, 0.004, material, color)
-    # the lid: built closed (y from the hinge, z up), then swung open past upright
-    lean = d.uniform(0.08, 0.2)
-    lx, ly, lt = hx + flange + 0.002, hy + flange + 0.002, 0.004
-    hinge = (0.0, -ly + 0.002, h + 0.002)
-    turn = axis_angle_quat((1, 0, 0), math.pi / 2 + lean)
-    u = (0.0, -math.sin(lean), math.cos(lean))
-    w = (0.0, -math.cos(lean), -math.sin(lean))  # the closed lid's up
-
-    def on_lid(name, half, x, y, z, col, **kw):
-        pos = tuple(hinge[i] + x * (1, 0, 0)[i] + y * u[i] + z * w[i] for i in range(3))
-        d.add(name, "box", half, pos, material, col, quat=turn, **kw)
-
-    on_lid("lid", (lx, ly, lt / 2), 0.0, ly, lt / 2, lid)
-    skirt = 0.009
-    on_lid("lid_skirt_y0", (lx, 0.002, skirt / 2), 0.0, 0.002, -skirt / 2, lid)
-    on_lid("lid_skirt_y1", (lx, 0.002, skirt / 2), 0.0, 2 * ly - 0.002, -skirt / 2, lid)
+    hx, hy, h = d.uniform(0.08, 0.095), d.uniform(0.11, 0.13), d.uniform(0.085, 0.11)
+    floor = d.open_box("box", (hx, hy), h, t, material, color, full="x")
+    flange = 0.007
+    d.frame("rim", (hx + flange, hy + flange), flange + t, h - 0.005, 0.005, material, color)
+    d.frame("ledge", (hx + 0.003, hy + 0.003), 0.006, h * 0.4, 0.003, material, color)
+    # the lid, pushed along y off the far end: it still rests on the rim over that end
+    lx, ly, lt = hx + flange + 0.002, hy + flange + 0.002, 0.005
+    slide = 2 * hy * d.uniform(0.38, 0.45)
+    cy = -slide
+    d.box("lid", (lx, ly, lt / 2), (0, cy, h + lt / 2), material, lid)
+    d.box("lid_panel", (lx * 0.7, ly * 0.78, 0.002), (0, cy, h + lt + 0.002), material, lid)
+    skirt = 0.008
     for k, sign in enumerate((-1, 1)):
-        on_lid(
+        d.box(
             f"lid_skirt_x{k}",
-            (0.002, ly - 0.004, skirt / 2),
-            sign * (lx - 0.002),
-            ly,
-            -skirt / 2,
+            (0.002, ly, skirt / 2),
+            (sign * (lx - 0.002), cy, h + lt - skirt / 2),
+            material,
             lid,
         )
-        on_lid(f"lid_rib_{k}", (lx * 0.8, 0.003, 0.002), 0.0, ly + sign * ly * 0.45, -0.002, lid)
-        on_lid(
-            f"latch_tab_{k}", (0.014, 0.002, 0.012), sign * lx * 0.5, 2 * ly + 0.002, -0.006, lid
-        )
-    # flip clip handles hanging at the ends, and the catches they lock on
-    clip = lid
-    for k, sign in enumerate((-1, 1)):
-        x = sign * (hx + 0.012)
-        d.box(f"clip_handle_{k}", (0.003, hy * 0.42, 0.006), (x, 0, h - 0.034), material, clip)
-        for j, y in enumerate((-hy * 0.38, hy * 0.38)):
-            d.segment(
-                f"clip_arm_{k}{j}",
-                "box",
-                (sign * (hx + 0.001), y, h - 0.016),
-                (x, y, h - 0.034),
-                (0.003, 0.0025),
-                material,
-                clip,
-            )
         d.box(
-            f"grip_{k}",
-            (0.0006, hy * 0.3, 0.006),
-            (sign * (hx + 0.0006), 0, h - 0.05),
+            f"lid_skirt_y{k}",
+            (lx - 0.004, 0.002, skirt / 2),
+            (0, cy + sign * (ly - 0.002), h + lt - skirt / 2),
             material,
-            "black",
-            visual_only=True,
+            lid,
         )
+    # clip latches on the long sides: a flap from the lid's edge down over the flange
+    for k, sign in enumerate((-1, 1)):
+        for j, y in enumerate((-hy * 0.72, -hy * 0.16)):
+            x = sign * (lx + 0.003)
+            d.box(f"latch_{k}{j}", (0.003, 0.02, 0.017), (x, y, h - 0.008), material, lid)
+            d.box(
+                f"latch_grip_{k}{j}",
+                (0.0006, 0.014, 0.0025),
+                (x + sign * 0.0031, y, h - 0.019),
+                material,
+                "black",
+                visual_only=True,
+            )
+        # the catch that a latch hooks under, left bare at the open end
         d.box(
             f"catch_{k}",
-            (0.012, 0.003, 0.005),
-            (sign * hx * 0.5, hy + 0.003, h - 0.016),
+            (0.003, 0.012, 0.004),
+            (sign * (hx + 0.003), hy * 0.55, h - 0.014),
             material,
-            lid,
+            color,
         )
+    # the label window on the front long side: a frame with a card in it
+    win = (hy * 0.22, h * 0.15)
+    wy, wz = hy * 0.5, h * 0.62
+    d.box(
+        "label_window",
+        (0.0012, win[0] + 0.004, win[1] + 0.004),
+        (hx + 0.0012, wy, wz),
+        material,
+        lid,
+    )
     d.box(
         "label_card",
-        (hx * 0.28, 0.0006, h * 0.13),
-        (0, hy + 0.0008, h * 0.5),
+        (0.0006, win[0], win[1]),
+        (hx + 0.003, wy, wz),
         "paper",
         "white",
+        visual_only=True,
         texture=Texture("ruled", ("gray",)),  # a card to write on: nothing printed
     )
-    d.interior((hx - t - 0.005, hy - t - 0.005), floor_z=floor, rim_z=h)
-    return Traits(tuple(dict.fromkeys((color, lid))), material, "cuboid")
+    y0 = cy + ly + 0.004  # the open end, clear of the lid
+    y1 = hy - t - 0.005
+    d.interior((hx - t - 0.005, (y1 - y0) / 2), floor_z=floor, rim_z=h, center=(0.0, (y0 + y1) / 2))
+    return Traits((color, lid), material, "cuboid")
 
 
 @generator(

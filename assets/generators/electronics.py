@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import math
 
 from ..design import Design, Traits
@@ -341,49 +342,87 @@ def presenter_clicker(d: Design) -> Traits:
     return Traits((color,), "plastic", "elongated")
 
 
+def _turn_parts(d: Design, yaw: float) -> None:
+    """Turn every part built so far by ``yaw`` about the vertical axis through the origin
+    (to lay a long object across the close-up's view)."""
+    c, s = math.cos(yaw), math.sin(yaw)
+    q = axis_angle_quat((0, 0, 1), yaw)
+    d.parts = [
+        dataclasses.replace(
+            p,
+            pos=(p.pos[0] * c - p.pos[1] * s, p.pos[0] * s + p.pos[1] * c, p.pos[2]),
+            quat=tuple(float(v) for v in quat_mul(q, p.quat)),
+        )
+        for p in d.parts
+    ]
+
+
+def _arrowhead(
+    d: Design, name: str, x: float, y: float, z: float, size: float, point: int, ink: str
+) -> None:
+    """A filled triangle printed at height z, pointing to +y (``point`` 1) or -y (-1): four
+    strips across, shorter towards the tip."""
+    for j in range(4):
+        d.box(
+            f"{name}_{j}",
+            (size * (1 - j / 4), size / 8 + 0.0001, 0.0002),
+            (x, y + point * (j - 1.5) * size / 4, z),
+            "plastic",
+            ink,
+            visual_only=True,
+        )
+
+
 @revised("presenter_clicker", 3)
 def presenter_clicker_3(d: Design) -> Traits:
-    """Revision 3: two big page keys marked with back and forward chevrons, a red laser key,
-    and a glossy laser nose at the front (the first read as a car key fob or a remote)."""
+    """Revision 3: a slim, long presenter remote lying across the view: two large page keys
+    side by side under its front half, marked with big white back and forward arrowheads
+    pointing left and right, a smaller red laser key behind them and a black-screen key, and
+    a glossy tapered laser nose with its red lens at the tip (a short remote with round keys
+    read as a car key fob)."""
     color = d.choice(["black", "black", "gray", "silver", "white", "blue"])
-    keys = d.choice(["gray", "black"] if color != "black" else ["gray", "silver"])
-    mark = "white" if keys in ("gray", "black") else "black"
-    lx, w, t = d.uniform(0.095, 0.115), d.uniform(0.03, 0.036), d.uniform(0.012, 0.016)
+    keys = "black" if color != "black" else d.choice(["gray", "silver"])
+    ink = "white" if keys == "black" else "black"
+    lx, w, t = d.uniform(0.118, 0.132), d.uniform(0.026, 0.029), d.uniform(0.01, 0.012)
     _pill(d, "body", lx, w, t, 0.0, "plastic", color, solid_fraction=0.6)
-    d.ellipsoid(
+    d.segment(
         "nose",
-        (0.008, w / 2 - 0.001, t / 2 - 0.0005),
-        (lx / 2 - 0.004, 0, t / 2),
+        "ellipsoid",
+        (lx / 2 - 0.016, 0, t / 2),
+        (lx / 2 + 0.006, 0, t / 2),
+        (w / 2 - 0.0012, t / 2 - 0.0004),
         "plastic",
         "black",
         solid_fraction=0.6,
     )
-    d.rod("laser", 0.0022, 0.001, (lx / 2 + 0.0038, 0, t / 2), "glass", "red", visual_only=True)
-    dot(d, "laser_button", w * 0.2, lx * 0.26, 0, t, "red")
-    for k in range(4):  # a star of rays on the laser key
-        d.box(
-            f"laser_ray_{k}",
-            (w * 0.12, 0.0005, 0.0002),
-            (lx * 0.26, 0, t + 0.0012),
-            "plastic",
-            "white",
-            yaw=k * math.pi / 4,
-            visual_only=True,
-        )
-    for k, (x, point) in enumerate(((lx * 0.06, -1), (-lx * 0.15, 1))):  # back, forward
-        d.upright(f"page_key_{k}", w * 0.36, 0.0014, t, "rubber", keys, xy=(x, 0))
-        tip = (x, point * w * 0.14, t + 0.0016)
-        for j, side in enumerate((-1, 1)):
-            d.segment(
-                f"chevron_{k}_{j}",
-                "box",
-                tip,
-                (x + side * w * 0.14, 0, t + 0.0016),
-                (0.0011, 0.0002),
-                "plastic",
-                mark,
-                visual_only=True,
-            )
+    d.rod(
+        "laser_ring",
+        0.0042,
+        0.0012,
+        (lx / 2 + 0.0055, 0, t / 2),
+        "metal",
+        "silver",
+        visual_only=True,
+    )
+    d.rod("laser", 0.003, 0.001, (lx / 2 + 0.0064, 0, t / 2), "glass", "red", visual_only=True)
+    kx = lx * 0.13  # the page keys' centre, in the front half
+    for k, side in enumerate((1, -1)):  # back (left, +y), forward (right, -y)
+        y = side * w * 0.24
+        d.ellipsoid(f"page_key_{k}", (0.017, w * 0.23, 0.0016), (kx, y, t), "rubber", keys)
+        _arrowhead(d, f"arrow_{k}", kx, y - side * 0.0012, t + 0.0015, 0.0064, side, ink)
+    d.upright("laser_key", w * 0.2, 0.0012, t, "rubber", "red", xy=(-lx * 0.1, 0))
+    d.upright(
+        "laser_dot",
+        w * 0.05,
+        0.0003,
+        t + 0.0012,
+        "plastic",
+        "white",
+        xy=(-lx * 0.1, 0),
+        visual_only=True,
+    )
+    d.slab("blank_key", (0.0035, w * 0.2, 0.0006), t, "rubber", keys, xy=(-lx * 0.24, 0))
+    _turn_parts(d, math.radians(d.uniform(55.0, 70.0)))  # the nose to the lower left
     return Traits((color,), "plastic", "elongated")
 
 
@@ -893,100 +932,91 @@ def phone_stand(d: Design) -> Traits:
 
 @revised("phone_stand", 3)
 def phone_stand_3(d: Design) -> Traits:
-    """Revision 3: a small desk stand holding a smartphone upright: the phone's black screen
-    lit with a grid of app icons and a dock, resting on a short backrest against a lip split
-    by a cable slot, its charging cable plugged in from below (the bare stand read as a book
-    stand or an easel)."""
-    material = d.choice(["aluminium", "plastic", "wood"])
+    """Revision 3: an empty folding desk phone stand, seen from the front: a flat base plate,
+    a support arm rising from a rear hinge to a second hinge, the phone-sized back plate
+    leaning back from it with two silicone pads, and at its foot, held up off the base, the
+    hooked lip that holds a phone, split by a cable slot (a stand holding a phone read as a
+    phone; the first, a low backrest on a base, read as a book stand or an easel)."""
+    material = d.choice(["aluminium", "aluminium", "plastic"])
     color = d.choice(
-        {
-            "aluminium": ["silver", "gray", "black"],
-            "plastic": ["white", "black", "pink", "blue"],
-            "wood": ["brown", "beige"],
-        }[material]
+        {"aluminium": ["silver", "gray", "black"], "plastic": ["white", "black", "pink"]}[material]
     )
-    t = {"aluminium": 0.004, "plastic": 0.005, "wood": 0.01}[material]
-    w, base_t = d.uniform(0.066, 0.074), t * 1.4
-    lean, back = d.uniform(0.3, 0.42), d.uniform(0.055, 0.07)
-    pt, pw = 0.008, d.uniform(0.056, 0.064)  # the phone's thickness and width
-    pl = min(d.uniform(0.105, 0.118), (0.124 - base_t - pt) / math.cos(lean))
+    pad = "black" if color != "black" else "gray"
+    t = {"aluminium": 0.004, "plastic": 0.005}[material]
+    w = d.uniform(0.064, 0.072)
+    base_t = t
+    lx = d.uniform(0.085, 0.095)
+    d.slab("base", (lx / 2, w / 2, base_t / 2), 0.0, material, color)
+    lean = d.uniform(0.3, 0.4)  # the back plate from the vertical
     sin, cos = math.sin(lean), math.cos(lean)
-    u, n = (-sin, cos), (cos, sin)  # up the backrest, and out of its face (x, z)
-    foot = 0.0
-    top = (foot - back * sin, base_t + back * cos)
-    beam(d, "backrest", (foot, base_t), top, w / 2, t / 2, material, color)
-    # the phone lies on the backrest's face, its bottom edge just above the base
-    s = -(t / 2) * math.tan(lean) + 0.0008
-    along, out = pl / 2 + s, t / 2 + pt / 2
-    cx, cz = foot + n[0] * out + u[0] * along, base_t + n[1] * out + u[1] * along
-    tilt = axis_angle_quat((0, 1, 0), -lean)
-    body = d.choice(["black", "black", "silver", "white"])
-    d.add("phone", "box", (pt / 2, pw / 2, pl / 2), (cx, 0, cz), "plastic", body, quat=tilt)
-
-    def on_screen(name, half_w, half_l, y, v, col, lift=0.0004):
-        """A flat patch on the phone's face, ``v`` along it from the centre."""
-        o = pt / 2 + lift
-        pos = (cx + n[0] * o + u[0] * v, y, cz + n[1] * o + u[1] * v)
+    h1 = (-lx / 2 + 0.01, base_t + 0.004)
+    h2 = (d.uniform(-0.004, 0.004), d.uniform(0.06, 0.068))
+    arm_w = w * 0.55
+    beam(d, "arm", h1, h2, arm_w / 2, t / 2, material, color)
+    hinge = d.choice(["black", "gray"]) if color != "black" else "gray"
+    d.rod("hinge_low", 0.004, arm_w + 0.004, (h1[0], 0, h1[1]), "metal", hinge, axis="y")
+    d.rod("hinge_top", 0.0045, arm_w + 0.004, (h2[0], 0, h2[1]), "metal", hinge, axis="y")
+    # the back plate: its back face on the top hinge, leaning back
+    down, up = d.uniform(0.042, 0.048), d.uniform(0.038, 0.045)
+    off = 0.0045 + t / 2  # from the hinge axis to the plate's mid plane, out along its normal
+    n = (cos, sin)
+    mid = (h2[0] + n[0] * off, h2[1] + n[1] * off)
+    foot = (mid[0] + down * sin, mid[1] - down * cos)
+    head = (mid[0] - up * sin, mid[1] + up * cos)
+    beam(d, "back_plate", foot, head, w / 2, t / 2, material, color)
+    for k, frac in enumerate((0.3, 0.75)):  # silicone pads across the plate's face
+        p = tuple(a + frac * (b - a) for a, b in zip(foot, head, strict=True))
+        q = (p[0] + n[0] * (t / 2 + 0.0005), p[1] + n[1] * (t / 2 + 0.0005))
         d.add(
-            name, "box", (0.0003, half_w, half_l), pos, "plastic", col, quat=tilt, visual_only=True
+            f"pad_{k}",
+            "box",
+            (0.0005, w / 2 - 0.012, 0.002),
+            (q[0], 0, q[1]),
+            "silicone",
+            pad,
+            quat=axis_angle_quat((0, 1, 0), -lean),
+            visual_only=True,
         )
-
-    on_screen("screen", pw / 2 - 0.0025, pl / 2 - 0.004, 0.0, 0.0, "black")
-    on_screen("camera_notch", 0.006, 0.0018, 0.0, pl / 2 - 0.008, "gray", 0.0008)
-    icons = ["red", "green", "blue", "yellow", "orange", "purple", "pink", "white"]
-    cell = (pw - 0.012) / 4
-    for row in range(5):
-        for col in range(4):
-            y = -pw / 2 + 0.006 + cell * (col + 0.5)
-            v = pl / 2 - 0.02 - row * cell * 1.15
-            on_screen(f"icon_{row}_{col}", cell * 0.32, cell * 0.32, y, v, d.choice(icons), 0.0008)
-    on_screen("dock", pw / 2 - 0.006, cell * 0.5, 0.0, -pl / 2 + 0.016, "gray", 0.0006)
-    for col in range(4):
-        y = -pw / 2 + 0.006 + cell * (col + 0.5)
-        on_screen(
-            f"dock_icon_{col}", cell * 0.3, cell * 0.3, y, -pl / 2 + 0.016, d.choice(icons), 0.001
-        )
-    # the base, the lip in front of the phone split by a cable slot, and the plugged cable
-    front = cx + sin * pl / 2 + cos * pt / 2  # the phone's lowest front edge (x)
-    lip_x = front + 0.003
-    rear = min(top[0], cx - sin * pl / 2) - 0.004
-    lx = lip_x + 0.012 - rear
-    d.slab("base", (lx / 2, w / 2, base_t / 2), 0.0, material, color, xy=(rear + lx / 2, 0))
-    gap = 0.012
+    # the lip: a ledge out from the plate's foot and an upturned edge, split by a cable slot
+    ledge = d.uniform(0.013, 0.016)
+    l0 = (foot[0] - sin * t / 2, foot[1] + cos * t / 2 - t / 2)
+    l1 = (l0[0] + ledge * cos, l0[1] + ledge * sin)
+    gap = 0.014
     half = (w / 2 - gap / 2) / 2
     for k, sign in enumerate((-1, 1)):
-        d.slab(
+        y = sign * (gap / 2 + half)
+        centre = ((l0[0] + l1[0]) / 2, y, (l0[1] + l1[1]) / 2)
+        d.add(
             f"lip_{k}",
-            (0.0025, half, 0.006),
-            base_t,
+            "box",
+            (ledge / 2, half, t / 2),
+            centre,
             material,
             color,
-            xy=(lip_x, sign * (gap / 2 + half)),
+            quat=axis_angle_quat((0, 1, 0), -lean),
         )
-    d.slab(
-        "cable_slot",
-        (0.004, gap / 2, 0.0004),
-        base_t,
-        material,
-        "black",
-        xy=(lip_x - 0.0015, 0),
-        visual_only=True,
-    )
-    plug = d.choice(["white", "black"])
-    d.slab(
-        "plug",
-        (0.004, 0.005, 0.004),
-        base_t,
-        "plastic",
-        plug,
-        xy=(front - 0.004, 0),
-        visual_only=True,
-    )
-    d.rod("cable", 0.0018, 0.03, (rear - 0.01, 0, 0.0018), "rubber", plug, visual_only=True)
-    if material != "wood":
-        mid = (foot - 0.55 * back * sin - t, base_t + 0.55 * back * cos)
-        beam(d, "strut", (rear + t, base_t), mid, w * 0.3, t / 2, material, color)
-    return Traits(tuple(dict.fromkeys((color, "black"))), material, "L-shape")
+        tip = (l1[0] - sin * 0.0035 - t / 2 * cos, y, l1[1] + cos * 0.0035)
+        d.add(
+            f"lip_tip_{k}",
+            "box",
+            (t / 2, half, 0.0045),
+            tip,
+            material,
+            color,
+            quat=axis_angle_quat((0, 1, 0), -lean),
+        )
+        d.add(
+            f"lip_pad_{k}",
+            "box",
+            (ledge / 2 - 0.002, half - 0.002, 0.0004),
+            (centre[0] - sin * (t / 2 + 0.0004), y, centre[2] + cos * (t / 2 + 0.0004)),
+            "silicone",
+            pad,
+            quat=axis_angle_quat((0, 1, 0), -lean),
+            visual_only=True,
+        )
+    _turn_parts(d, math.radians(d.uniform(-25.0, -15.0)))  # its side towards the close-up
+    return Traits((color,), material, "irregular")
 
 
 @generator("vase", size=(0.12, 0.27), synonyms=("vase", "flower vase"), container=True)

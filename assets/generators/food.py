@@ -87,6 +87,67 @@ def tomato(d: Design) -> Traits:
     return Traits((color,), "organic", "sphere")
 
 
+@revised("tomato", 3)
+def tomato_3(d: Design) -> Traits:
+    """Revision 3: a ripe red tomato: smooth round lobes bulging round a flattened body
+    (a dimple at the top), a green star-shaped calyx of pointed sepals lying over the
+    shoulders and a short stem (the first, a plain ellipsoid that was sometimes orange,
+    read as an orange)."""
+    color = "red"
+    r = d.uniform(0.03, 0.038)  # the half width
+    lobes = d.choice([5, 6, 6, 7])
+    s = r * d.uniform(0.74, 0.8)  # each lobe a smooth sphere round the axis
+    ring = r - s
+    h = s * d.uniform(0.97, 1.0)
+    turn = d.uniform(0, math.pi)
+    for k in range(lobes):
+        a = turn + 2 * math.pi * k / lobes
+        center = (ring * math.cos(a), ring * math.sin(a), h)
+        d.sphere(f"lobe_{k}", s, center, "organic", color, solid_fraction=1.3 / lobes)
+    top = h + math.sqrt(s * s - ring * ring)  # the dimple where the lobes meet
+    d.ellipsoid(
+        "core", (ring * 1.6, ring * 1.6, s * 0.95), (0, 0, h), "organic", color, solid_fraction=0.3
+    )
+    # the calyx: pointed sepals curling down over the shoulders from the stem
+    sepals = d.choice([5, 6])
+    reach = r * d.uniform(0.42, 0.5)
+    spin = d.uniform(0, math.pi)
+    for k in range(sepals):
+        a = spin + 2 * math.pi * k / sepals + d.uniform(-0.15, 0.15)
+        u = (math.cos(a), math.sin(a))
+        tip = reach * d.uniform(0.85, 1.1)
+
+        def over(rho: float, lift: float, u=u) -> tuple[float, float, float]:
+            """A point ``lift`` above the skin, ``rho`` out from the axis towards ``u``."""
+            z = h + math.sqrt(max(s * s - (rho - ring) ** 2, 0.0)) + lift
+            return (u[0] * rho, u[1] * rho, z)
+
+        mid = over(ring * 1.2, 0.0012)
+        d.segment(
+            f"sepal_{k}",
+            "ellipsoid",
+            over(0.0, 0.002),
+            mid,
+            (0.004, 0.001),
+            "organic",
+            "green",
+            visual_only=True,
+        )
+        d.segment(
+            f"sepal_tip_{k}",
+            "ellipsoid",
+            mid,
+            over(tip, 0.0006),
+            (0.003, 0.0008),
+            "organic",
+            "green",
+            visual_only=True,
+        )
+    d.upright("calyx", 0.0045, 0.002, top, "organic", "green", visual_only=True)
+    d.upright("stem", 0.0018, d.uniform(0.006, 0.01), top + 0.001, "organic", "green")
+    return Traits((color,), "organic", "sphere")
+
+
 @generator("egg", size=(0.045, 0.07))
 def egg(d: Design) -> Traits:
     color = d.choice(["white", "beige", "brown"])

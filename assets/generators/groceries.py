@@ -738,29 +738,69 @@ def cheese_sticks(d: Design) -> Traits:
 
 @revised("cheese_sticks", 3)
 def cheese_sticks_3(d: Design) -> Traits:
-    """Revision 3: plain string cheese: pale cylinders lying side by side, the front one
-    peeled at its end into strings that splay out over the table, and sometimes one still
-    in its clear wrapper with a printed band (the first, wrapped sticks, read as a glue
-    stick; breaded mozzarella sticks read as bread rolls or drumsticks)."""
-    cheese = d.choice(["white", "white", "white", "beige", "yellow"])
-    wrap = d.choice(["red", "blue", "green", "yellow", "purple"])
-    r, length = d.uniform(0.009, 0.011), d.uniform(0.095, 0.12)
-    peel = length * d.uniform(0.3, 0.36)
+    """Revision 3: string cheese: two sticks still in their clear wrappers (sealed flat at
+    both ends), held by a coloured paper band printed STRING CHEESE, lying behind a pale stick
+    unwrapped and peeled at one end into strings that splay over the table (plain peeled
+    sticks read as nothing in particular; wrapped ones with a pictogram as glue sticks)."""
+    cheese = d.choice(["white", "white", "white", "beige"])
+    wrap = d.choice(["red", "blue", "green", "yellow", "orange", "purple"])
+    ink = "white" if wrap != "yellow" else "red"
+    r, length = d.uniform(0.0085, 0.0095), d.uniform(0.095, 0.11)
+    # the wrapped sticks at the back (-x), lying along y
+    for k in range(2):
+        x = -(2 * r + 0.007) - k * (2 * r + 0.001)  # room for a finger by the front one
+        y = d.uniform(-0.003, 0.003)
+        d.rod(f"stick_{k}", r, length, (x, y, r), "organic", cheese, axis="y", capsule=True)
+        d.rod(
+            f"sleeve_{k}",
+            r + 0.0007,
+            length + 0.002,
+            (x, y, r),
+            "plastic",
+            "transparent",
+            axis="y",
+            visual_only=True,
+        )
+        for j, sign in enumerate((-1, 1)):
+            d.box(
+                f"crimp_{k}{j}",
+                (r * 0.9, 0.005, 0.0008),
+                (x, y + sign * (length / 2 + 0.005), r),
+                "plastic",
+                "transparent",
+                visual_only=True,
+            )
+    # a paper band round the two, printed STRING CHEESE on top
+    band = d.uniform(0.021, 0.025)
+    bx = -(3 * r + 0.0075)
+    d.add(
+        "pack_band",
+        "box",
+        (band, 2 * r + 0.0016, r + 0.0011),
+        (bx, 0.0, r),
+        "paper",
+        wrap,
+        quat=_yaw(math.pi / 2),  # the words along +y, their top towards -x
+        visual_only=True,
+        texture=Texture("print_cheese", (ink,)),
+    )
+    # the front stick, unwrapped, peeled at its +y end into strings
+    x = 0.0
+    peel = length * d.uniform(0.32, 0.38)
     body = length - peel
-    x0 = -length / 2 + body  # where the strings leave the front stick
-    d.rod("stick_peeled", r, body, (x0 - body / 2, 0, r), "organic", cheese)
-    d.upright("stick_end", r * 0.98, 0.0008, 0.0, "organic", cheese, visual_only=True)
-    strands = d.choice([8, 9, 10])
+    y0 = -length / 2 + body  # where the strings leave the stick
+    d.rod("stick_peeled", r, body, (x, y0 - body / 2, r), "organic", cheese, axis="y")
+    strands = d.choice([7, 8, 9])
     for k in range(strands):
         f = (k + 0.5) / strands - 0.5  # from -0.5 (one side) to 0.5 (the other)
-        y, z = r * 1.4 * f, r + r * 0.5 * math.cos(math.pi * f) * (1 if k % 2 else -0.6)
-        thick = r * d.uniform(0.15, 0.2)
-        mid = (x0 + peel * 0.5, r * 4.5 * f, max(z * 0.6, thick))
-        end = (x0 + peel - thick, r * 7.5 * f, thick)
+        sx, sz = r * 1.4 * f, r + r * 0.5 * math.cos(math.pi * f) * (1 if k % 2 else -0.6)
+        thick = r * d.uniform(0.17, 0.22)
+        mid = (x + r * 1.6 * f, y0 + peel * 0.5, max(sz * 0.6, thick))
+        end = (x + r * 2.4 * f + r * 0.3, y0 + peel - thick, thick)
         d.segment(
             f"peel_string_{k}",
             "capsule",
-            (x0 - 0.004, y, z),
+            (x + sx, y0 - 0.004, sz),
             mid,
             thick,
             "organic",
@@ -783,40 +823,13 @@ def cheese_sticks_3(d: Design) -> Traits:
             f"fibre_{k}",
             0.00035,
             body * 0.7,
-            (x0 - body * 0.45, r * math.sin(a), r + r * math.cos(a)),
+            (x + r * math.sin(a), y0 - body * 0.45, r + r * math.cos(a)),
             "organic",
             fibre,
+            axis="y",
             visual_only=True,
         )
-    others = d.choice([1, 2, 2])
-    wrapped = d.choice([False, True])
-    for k in range(others):
-        y = -2 * r - 0.01 - k * (2 * r + 0.001)  # room for a finger beside the front one
-        x = d.uniform(-0.006, 0.004)
-        d.rod(f"stick_{k}", r, length * 0.9, (x, y, r), "organic", cheese, capsule=True)
-        if wrapped and k == 0:
-            d.rod(
-                "sleeve",
-                r + 0.0007,
-                length * 0.92,
-                (x, y, r),
-                "plastic",
-                "transparent",
-                visual_only=True,
-            )
-            d.rod(
-                "wrapper_band",
-                r + 0.0009,
-                length * 0.4,
-                (x, y, r),
-                "plastic",
-                wrap,
-                visual_only=True,
-                # the cheese alone: a word round a lying stick would read on its side
-                texture=Texture("pictogram", ("white", "yellow"), "cheese"),
-            )
-    colors = (cheese, wrap) if wrapped else (cheese,)
-    return Traits(colors, "organic", "elongated")
+    return Traits((cheese, wrap), "organic", "elongated")
 
 
 @revised("bread", 3)

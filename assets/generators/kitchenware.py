@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import math
 
 from ..design import Design, Traits
@@ -293,82 +294,104 @@ def wire_cutters(d: Design) -> Traits:
     return Traits((grip, "silver"), "metal", "irregular")
 
 
+def _turn_parts(d: Design, yaw: float) -> None:
+    """Turn every part built so far by ``yaw`` about the vertical axis through the origin
+    (to lay a long tool across the close-up's view)."""
+    c, s = math.cos(yaw), math.sin(yaw)
+    q = axis_angle_quat((0, 0, 1), yaw)
+    d.parts = [
+        dataclasses.replace(
+            p,
+            pos=(p.pos[0] * c - p.pos[1] * s, p.pos[0] * s + p.pos[1] * c, p.pos[2]),
+            quat=tuple(float(v) for v in quat_mul(q, p.quat)),
+        )
+        for p in d.parts
+    ]
+
+
 @revised("wire_cutters", 3)
 def wire_cutters_3(d: Design) -> Traits:
-    """Revision 3: diagonal side cutters: a short, wide, pointed head of two bevelled jaws
-    whose straight cutting edges meet along the middle at an angle to the tip (polished
-    bevels on a darker head, no notches, no holes), a V spring between the handles and
-    dipped two-tone grips (the first, long straight jaws, read as pliers or a can opener;
-    a wire held in the jaws read as wire strippers)."""
-    grip = d.choice(["red", "red", "yellow", "blue", "orange", "green"])
-    tip = d.choice(["black", "gray"])
-    metal = d.choice(["gray", "gray", "black", "silver"])
-    shine = "white" if metal == "silver" else "silver"  # the ground bevels and edge
-    length, spread = d.uniform(0.15, 0.18), d.uniform(0.05, 0.065)
-    thick = d.uniform(0.011, 0.013)
+    """Revision 3: diagonal side cutters lying a little open on their return spring: a
+    short, fat, dark head of two jaws, each with a straight cutting edge and a broad polished
+    bevel ground along it, parted by a V gap that widens to the blunt tip; a round boss with
+    a rivet; a bright V spring between the handles; thick dipped grips, two-tone (the first,
+    long straight jaws, read as pliers or a can opener; a closed, pointed head too small to
+    see read as pliers; a wire held in the jaws read as wire strippers)."""
+    grip = d.choice(["red", "red", "yellow", "red", "orange", "blue"])
+    tip = d.choice(["yellow", "black"]) if grip == "red" else d.choice(["red", "black"])
+    metal = d.choice(["black", "black", "gray"])
+    shine = "white"  # the ground bevels
+    jaw_len, head_w = d.uniform(0.036, 0.04), d.uniform(0.013, 0.015)
+    handle_len, closed = d.uniform(0.09, 0.105), d.uniform(0.012, 0.015)
+    open_a = math.radians(d.uniform(5.0, 7.0))  # each half turned open by the spring
+    thick = d.uniform(0.012, 0.014)
     z = thick / 2
-    jaw = d.uniform(0.024, 0.028)
-    pivot = length / 2 - jaw
-    d.upright("boss", 0.0095, thick, 0.0, "metal", metal, xy=(pivot, 0))
-    d.upright("pivot", 0.0035, thick + 0.001, 0.0, "metal", shine, xy=(pivot, 0))
-    nose = (length / 2, 0.0)
+    r = d.uniform(0.0062, 0.007)  # the dipped grips' radius
+
+    def turn(x: float, y: float, sign: int) -> tuple[float, float]:
+        c, s = math.cos(sign * open_a), math.sin(sign * open_a)
+        return (x * c - y * s, x * s + y * c)
+
+    d.upright("boss", head_w * 1.05, thick, 0.0, "metal", metal)
+    d.upright("rivet", 0.004, thick + 0.0012, 0.0, "metal", "silver")
     for k, sign in enumerate((-1, 1)):
-        # the jaw: a wedge from the pivot to the point, its cutting edge on the middle line,
-        # the cheek wide at the pivot and tapering to the point in two steps
-        mid = (pivot + jaw * 0.5, sign * 0.0048)
+        yaw = sign * open_a
+        # the jaw: a straight strip on the cutting edge and a rounded cheek outside it
+        strip = 0.0032
+        cx, cy = turn(jaw_len * 0.4, sign * strip, sign)
+        d.box(f"jaw_{k}", (jaw_len * 0.4, strip, z), (cx, cy, z), "metal", metal, yaw=yaw)
+        p0 = turn(-0.003, sign * (head_w * 0.95), sign)
+        p1 = turn(jaw_len, sign * 0.0012, sign)
         d.segment(
-            f"jaw_{k}",
-            "box",
-            (pivot, sign * 0.0068, z),
-            (*mid, z),
-            (0.0052, z * 0.9),
-            "metal",
-            metal,
-        )
-        d.segment(
-            f"jaw_point_{k}",
+            f"cheek_{k}",
             "ellipsoid",
-            (mid[0] - 0.008, mid[1] * 1.05, z),
-            (nose[0] + 0.003, sign * 0.0004, z),
-            (0.0036, z * 0.85),
+            (*p0, z),
+            (*p1, z),
+            (head_w * 0.5, z * 0.98),
             "metal",
             metal,
         )
-        # the bevel ground along the edge: a polished facet sloping down to it
-        a0 = (pivot + 0.006, sign * 0.0036)
-        along = math.atan2(-sign * 0.0028, nose[0] - 0.002 - a0[0])
-        centre = ((a0[0] + nose[0] - 0.002) / 2, sign * 0.0018, thick * 0.93)
-        quat = quat_mul(axis_angle_quat((0, 0, 1), along), axis_angle_quat((1, 0, 0), sign * 0.45))
-        half = (math.hypot(nose[0] - 0.002 - a0[0], 0.0028) / 2, 0.0026, 0.0006)
-        d.add(f"bevel_{k}", "box", half, centre, "metal", shine, quat=quat)
-    d.box(
-        "edge",
-        ((nose[0] - pivot - 0.008) / 2, 0.00035, 0.0003),
-        ((nose[0] + pivot + 0.008) / 2, 0, thick * 0.96),
-        "metal",
-        "black" if metal != "black" else "gray",
-        visual_only=True,
-    )
-    bend = (pivot - 0.028, 0.0)
-    inward = (spread / 2 - 0.011) / (bend[0] + length / 2)  # the handles' spread per metre
-    for k, sign in enumerate((-1, 1)):
-        knee = (bend[0], sign * 0.011, z)
-        end = (-length / 2, sign * spread / 2, z)
-        d.segment(
-            f"shank_{k}", "box", (pivot, sign * 0.004, z), knee, (0.0045, z * 0.75), "metal", metal
+        # the polished bevel sloping down to the edge
+        bx, by = turn(jaw_len * 0.46, sign * 0.0026, sign)
+        quat = quat_mul(axis_angle_quat((0, 0, 1), yaw), axis_angle_quat((1, 0, 0), sign * 0.2))
+        d.add(
+            f"bevel_{k}",
+            "box",
+            (jaw_len * 0.36, 0.0028, 0.0006),
+            (bx, by, thick - 0.0002),
+            "metal",
+            shine,
+            quat=quat,
         )
-        mid = tuple(a + 0.78 * (b - a) for a, b in zip(knee, end, strict=True))
-        d.segment(f"grip_{k}", "capsule", (knee[0] - 0.004, knee[1], z), mid, z, "rubber", grip)
-        d.segment(f"grip_end_{k}", "capsule", mid, end, z * 1.05, "rubber", tip)
+        # the handle of this half lies on the other side of the pivot
+        knee = turn(-0.022, -sign * 0.0075, sign)
+        end = turn(-handle_len, -sign * closed, sign)
+        d.segment(
+            f"shank_{k}",
+            "box",
+            (*turn(-0.004, -sign * 0.004, sign), z),
+            (*knee, z * 0.9),
+            (0.0045, z * 0.6),
+            "metal",
+            metal,
+        )
+        mid = tuple(a + 0.72 * (b - a) for a, b in zip(knee, end, strict=True))
+        d.segment(f"grip_{k}", "capsule", (*knee, r), (*mid, r), r, "rubber", grip)
+        d.segment(f"grip_end_{k}", "capsule", (*mid, r), (*end, r), r * 1.08, "rubber", tip)
+        # the return spring: a bright wire V from a coil by the pivot to each handle
+        f = 0.42
+        hand = tuple(a + f * (b - a) for a, b in zip(knee, end, strict=True))
         d.segment(
             f"spring_{k}",
             "box",
-            (bend[0] - 0.008, 0, z + 0.001),
-            (bend[0] - 0.045, sign * (0.011 + inward * 0.045 - 0.004), z + 0.001),
-            (0.0013, 0.0015),
+            (-0.024, 0.0, r * 1.5),
+            (hand[0], hand[1] * 0.8, r * 1.5),
+            (0.0011, 0.0011),
             "metal",
-            "black" if grip != "black" else "silver",
+            "silver",
         )
+    d.upright("spring_coil", 0.003, 0.003, r * 1.5 - 0.0015, "metal", "silver", xy=(-0.024, 0))
+    _turn_parts(d, math.radians(d.uniform(55.0, 70.0)))  # the head to the lower left
     return Traits((grip, metal), "metal", "irregular")
 
 
@@ -468,29 +491,45 @@ def _cork_stain(d: Design, radius: float, z: float, center: tuple[float, float])
 
 @revised("coaster", 3)
 def coaster_3(d: Design) -> Traits:
-    """Revision 3: a cork coaster, its pores showing, with the broken brown ring a wet
-    glass left on it; or a small stack of them; or a slate or ceramic square on a cork base
-    (the smooth disc with a printed ring read as a wireless charger)."""
-    kind = d.choice(["cork", "cork", "stack", "stack", "slate"])
-    cork = d.choice(["beige", "beige", "golden"])
-    size = d.uniform(0.045, 0.05)
-    if kind == "slate":
-        material, color = d.choice([("stone", "black"), ("stone", "gray"), ("ceramic", "white")])
-        thick, base = d.uniform(0.005, 0.006), 0.0045
-        d.slab("cork_base", (size, size, base / 2), 0.0, "wood", cork, texture=CORK)
-        kw = dict(solid_fraction=0.5) if material == "stone" else {}
-        d.slab("top", (size, size, thick / 2), base, material, color, **kw)
-        return Traits((color, cork), material, "flat")
-    thick = d.uniform(0.005, 0.007)
-    layers = 1 if kind == "cork" else d.choice([3, 4])
-    for k in range(layers):  # each one a little askew on the one below
-        xy = (d.uniform(-0.003, 0.003), d.uniform(-0.003, 0.003)) if k else (0.0, 0.0)
-        d.upright(f"disk_{k}", size, thick, k * thick, "wood", cork, xy=xy, texture=CORK)
-    top = layers * thick
-    off = size - 0.036 - 0.004
-    center = (d.uniform(-off, off), d.uniform(-off, off) * 0.5)
-    _cork_stain(d, d.uniform(0.031, 0.035), top, center)
-    return Traits((cork,), "wood", "disk" if layers == 1 else "cylinder")
+    """Revision 3: a set of round cork coasters, each one thin and palm sized: a stack of
+    them fanned out so every edge shows, the top one ringed brown where a wet glass stood;
+    or a neat stack standing in a wire caddy with posts round it (one cork disc, or a slate
+    square, read as a mouse pad or a wireless charger)."""
+    cork = "beige"
+    size = d.uniform(0.045, 0.049)
+    thick = d.uniform(0.0045, 0.006)
+    if d.rng.random() < 0.4:  # fanned out, each a step further along
+        layers = d.choice([4, 5])
+        step = d.uniform(0.0045, 0.0055)
+        a = d.uniform(2.9, 4.6)  # away from the front, so the lower edges show
+        for k in range(layers):
+            xy = (k * step * math.cos(a), k * step * math.sin(a))
+            d.upright(f"disk_{k}", size, thick, k * thick, "wood", cork, xy=xy, texture=CORK)
+        top = layers * thick
+        center = ((layers - 1) * step * math.cos(a), (layers - 1) * step * math.sin(a))
+        colors = (cork,)
+    else:  # a neat stack in a caddy: a round base and four posts
+        caddy = d.choice(["black", "silver", "brown"])
+        material = "wood" if caddy == "brown" else "metal"
+        fill = {} if material == "wood" else dict(solid_fraction=0.3)
+        base = 0.004
+        d.upright("caddy_base", size + 0.004, base, 0.0, material, caddy, **fill)
+        layers = d.choice([5, 6])
+        for k in range(layers):
+            xy = (d.uniform(-0.0012, 0.0012), d.uniform(-0.0012, 0.0012))
+            z = base + k * thick
+            d.upright(f"disk_{k}", size, thick, z, "wood", cork, xy=xy, texture=CORK)
+        top = base + layers * thick
+        spin = d.uniform(0, math.pi / 2)
+        for k in range(4):
+            b = spin + k * math.pi / 2
+            xy = ((size + 0.0025) * math.cos(b), (size + 0.0025) * math.sin(b))
+            d.upright(f"post_{k}", 0.0018, top + 0.008 - base, base, material, caddy, xy=xy, **fill)
+            d.sphere(f"post_knob_{k}", 0.0028, (xy[0], xy[1], top + 0.008), material, caddy, **fill)
+        center = (0.0, 0.0)
+        colors = (cork, caddy)
+    _cork_stain(d, d.uniform(0.028, 0.032), top, center)
+    return Traits(colors, "wood", "cylinder")
 
 
 @generator(

@@ -302,64 +302,93 @@ def candle_holder(d: Design) -> Traits:
 
 @revised("candle_holder", 3)
 def candle_holder_3(d: Design) -> Traits:
-    """Revision 3: a lit candle shows what holds it: a glass votive cup with a pillar candle
-    burning low inside, or a candlestick (a drip dish, a turned stem and a socket) with a
-    taper candle and its flame (the empty cups read as a plant pot, a basket or a pencil
-    holder). The candlestick's free place is its drip dish beside the stem."""
+    """Revision 3: the holder, not the candle: a brass or silver candlestick (a wide drip
+    tray for a foot, a turned stem with knops, a drip pan and a socket) or an enamel
+    chamberstick (a dish with a raised rim, a socket and a finger loop), each holding a
+    short unlit stub with a blackened wick (a lit candle in it read as a candle). The free
+    place is the drip tray (the dish) beside the stem."""
     wax = d.choice(["white", "white", "beige", "red"])
-    if d.rng.random() < 0.55:  # a glass votive
-        color = d.choice(["transparent", "transparent", "red", "blue", "purple"])
-        r, h = d.uniform(0.03, 0.036), d.uniform(0.065, 0.08)
-        base = d.uniform(0.006, 0.009)
-        d.upright("base", r + 0.003, base, 0.0, "glass", color)
-        d.wall("wall", r, 0.003, h - base, base, "glass", color, segments=16)
-        candle = h * d.uniform(0.35, 0.45)
-        d.upright("candle", r - 0.003, candle, base, "organic", wax, solid_fraction=0.9)
-        top = base + candle
-        _flame(d, top, 0.85)
-        d.interior((r * 0.55, r * 0.55), floor_z=top, rim_z=h)
-        return Traits((color,), "glass", "cylinder")
-    metal = d.choice(["golden", "golden", "silver"])
-    fill = dict(solid_fraction=0.2)
-    dish_r, dish_t = d.uniform(0.038, 0.045), 0.004
-    d.upright("dish", dish_r, dish_t, 0.0, "metal", metal, **fill)
-    d.wall("dish_rim", dish_r - 0.003, 0.003, 0.007, dish_t, "metal", metal, segments=16)
-    stem = d.uniform(0.035, 0.045)
-    d.upright("stem", 0.0045, stem, dish_t, "metal", metal, **fill)
-    for k, frac in enumerate((0.25, 0.7)):
-        d.ellipsoid(
-            f"knop_{k}", (0.009, 0.009, 0.005), (0, 0, dish_t + frac * stem), "metal", metal, **fill
+    stub = d.uniform(0.012, 0.02)
+    if d.rng.random() < 0.55:  # a candlestick
+        metal = d.choice(["golden", "golden", "silver"])
+        fill = dict(solid_fraction=0.2)
+        tray_r, tray_t = d.uniform(0.042, 0.048), 0.005
+        d.upright("tray", tray_r, tray_t, 0.0, "metal", metal, **fill)
+        d.wall("tray_rim", tray_r - 0.003, 0.003, 0.008, tray_t, "metal", metal, segments=16)
+        stem = d.uniform(0.06, 0.075)
+        d.upright("stem", 0.006, stem, tray_t, "metal", metal, **fill)
+        d.upright("stem_base", 0.012, 0.008, tray_t, "metal", metal, **fill)
+        for k, (frac, rad) in enumerate(((0.3, 0.011), (0.62, 0.013), (0.85, 0.009))):
+            d.ellipsoid(
+                f"knop_{k}",
+                (rad, rad, 0.0055),
+                (0, 0, tray_t + frac * stem),
+                "metal",
+                metal,
+                **fill,
+            )
+        z = tray_t + stem
+        d.upright("drip_pan", d.uniform(0.022, 0.026), 0.003, z, "metal", metal, **fill)
+        d.upright("socket", 0.012, 0.016, z + 0.003, "metal", metal, **fill)
+        d.upright("socket_lip", 0.0135, 0.002, z + 0.017, "metal", metal, **fill)
+        candle_r, candle_z = 0.0095, z + 0.015
+        free_r, rim_z = tray_r - 0.003, tray_t + 0.008
+        floor = tray_t
+        colors, material, shape = (metal,), "metal", "irregular"
+    else:  # an enamel chamberstick
+        enamel = d.choice(["white", "white", "red", "blue", "green"])
+        edge = d.choice(["blue", "black"]) if enamel == "white" else "white"
+        dish_r, dish_t = d.uniform(0.044, 0.05), 0.004
+        d.upright("dish", dish_r, dish_t, 0.0, "metal", enamel, solid_fraction=0.25)
+        d.wall("dish_rim", dish_r - 0.003, 0.003, 0.012, dish_t, "metal", enamel, segments=16)
+        d.flat_ring(
+            "dish_edge", dish_r - 0.0015, 0.004, 0.002, dish_t + 0.012, "metal", edge, segments=12
         )
-    z = dish_t + stem
-    d.upright("bobeche", 0.016, 0.003, z, "metal", metal, **fill)
-    d.upright("socket", 0.0105, 0.014, z + 0.003, "metal", metal, **fill)
-    taper = d.uniform(0.05, 0.062)
-    d.upright("taper", 0.0085, taper, z + 0.006, "organic", wax)
-    _flame(d, z + 0.006 + taper, 0.8)
-    x = (dish_r - 0.003 + 0.009) / 2  # the free part of the dish, beside the stem
-    half = (dish_r - 0.003 - 0.009) / 2 - 0.001
-    d.interior((half, half), floor_z=dish_t, rim_z=dish_t + 0.007, center=(x, 0.0))
-    return Traits((metal, wax), "metal", "irregular")
+        socket = 0.022
+        d.upright("socket", 0.014, socket, dish_t, "metal", enamel, solid_fraction=0.25)
+        d.upright("socket_lip", 0.0155, 0.0025, dish_t + socket, "metal", edge)
+        # the finger loop standing up out of the rim, towards the front left
+        loop_r, out = 0.013, dish_r + 0.008
+        u = (math.cos(2.1), math.sin(2.1))
+        z0 = dish_t + 0.012
 
+        def on_loop(r: float, z: float) -> tuple[float, float, float]:
+            return (u[0] * r, u[1] * r, z)
 
-def _flame(d: Design, top: float, scale: float) -> None:
-    """A wick on a candle's top at height ``top`` and its flame, a yellow drop round an
-    orange core."""
-    d.upright("wick", 0.0007, 0.004 * scale, top, "fabric", "black", visual_only=True)
-    zf = top + 0.004 * scale + 0.007 * scale
+        for k in range(7):
+            a0, a1 = math.pi * (k / 7 - 0.5), math.pi * ((k + 1) / 7 - 0.5)
+            p0 = on_loop(out + loop_r * math.cos(a0), z0 + loop_r * (1 + math.sin(a0)))
+            p1 = on_loop(out + loop_r * math.cos(a1), z0 + loop_r * (1 + math.sin(a1)))
+            d.segment(f"loop_{k}", "box", p0, p1, (0.0045, 0.002), "metal", enamel)
+        d.segment(
+            "loop_foot",
+            "box",
+            on_loop(dish_r - 0.004, dish_t + 0.006),
+            on_loop(out, z0),
+            (0.0045, 0.002),
+            "metal",
+            enamel,
+        )
+        candle_r, candle_z = 0.0105, dish_t + socket - 0.002
+        free_r, rim_z, floor = dish_r - 0.003, dish_t + 0.012, dish_t
+        colors, material, shape = (enamel,), "metal", "disk"
+    # a short unlit stub, its wick blackened, a run of wax down its side
+    d.upright("stub", candle_r, stub, candle_z, "organic", wax)
+    d.upright("wick", 0.0008, 0.004, candle_z + stub, "fabric", "black", visual_only=True)
+    d.upright(
+        "wick_well", candle_r * 0.6, 0.0008, candle_z + stub, "organic", wax, visual_only=True
+    )
+    drip_a = d.uniform(0, 2 * math.pi)
     d.ellipsoid(
-        "flame",
-        (0.0042 * scale, 0.0042 * scale, 0.0095 * scale),
-        (0, 0, zf),
+        "wax_drip",
+        (0.0022, 0.0022, stub * 0.35),
+        (candle_r * math.cos(drip_a), candle_r * math.sin(drip_a), candle_z + stub * 0.7),
         "organic",
-        "yellow",
+        wax,
         visual_only=True,
     )
-    d.ellipsoid(
-        "flame_core",
-        (0.0026 * scale, 0.0026 * scale, 0.005 * scale),
-        (0, 0, zf - 0.004 * scale),
-        "organic",
-        "orange",
-        visual_only=True,
-    )
+    # the free place: the dish or drip tray round the socket, on the side away from the loop
+    half = (free_r - 0.016) / 2 - 0.006
+    center = (-(free_r + 0.016) / 2 * 0.8, -(free_r + 0.016) / 2 * 0.6)
+    d.interior((half, half), floor_z=floor, rim_z=rim_z, center=center)
+    return Traits(colors, material, shape)

@@ -634,69 +634,131 @@ def lunch_box(d: Design) -> Traits:
 
 @revised("lunch_box", 3)
 def lunch_box_3(d: Design) -> Traits:
-    """Revision 3: a bento box packed with lunch (a sandwich, and fruit or cherry tomatoes in
-    the small pockets), its clip-lock lid standing open behind; the big pocket stays free
-    (the empty first box read as a toolbox, a storage box or a pencil box)."""
-    color = d.choice(["red", "blue", "green", "yellow", "pink", "orange", "white", "purple"])
-    lid = d.choice([color, "white", "transparent"])
-    clip = d.choice(["white", "gray", color]) if lid != "white" else d.choice(["gray", color])
+    """Revision 3: a bento lunch box packed with lunch: white rice filling the back half
+    (a red pickled plum and a strip of seaweed or black sesame on it), broccoli, rolled
+    omelette and sausages or cherry tomatoes in a front pocket, the other one left free;
+    its clip-lock lid taken off and put under it (the first, empty, read as a toolbox; a
+    sandwich and rows of small fruit under a lid standing open read as a sewing kit)."""
+    color = d.choice(["red", "blue", "green", "pink", "orange", "black", "purple"])
+    lid = d.choice(["transparent", "transparent", color])
+    clip = d.choice(["white", color]) if color != "black" else "white"
     hx, hy = d.uniform(0.085, 0.1), d.uniform(0.06, 0.07)
-    h, t = d.uniform(0.038, 0.046), 0.003
+    h, t = d.uniform(0.032, 0.036), 0.003
     _tray(d, hx, hy, h, t, "plastic", color)
-    split = -hx * d.uniform(0.1, 0.2)  # the big pocket (-x) is free, two small ones at +x
-    wall = (h - t) / 2 - 0.004
+    wall = (h - t) / 2 - 0.003
+    split = -hx * d.uniform(0.0, 0.08)  # rice at -x; the side pockets at +x (the front)
     d.box("divider", (t / 2, hy - t, wall), (split, 0, t + wall), "plastic", color)
-    d.box(
-        "divider_small",
-        ((hx - split - t) / 2, t / 2, wall),
-        ((hx + split) / 2, 0, t + wall),
-        "plastic",
-        color,
-    )
-    # a sandwich cut in two, lying in the back small pocket (-y)
     px0, px1 = split + t / 2, hx - t
-    bread, filling = d.choice(["beige", "white", "brown"]), d.choice(["green", "red", "yellow"])
-    sy = (hy - t - t / 2) / 2
-    for k in range(2):
-        cx = px0 + (px1 - px0) * (0.27 + 0.46 * k)
-        half = ((px1 - px0) * 0.22, sy - 0.004)
-        layers = ((bread, 0.007), (filling, 0.004), (bread, 0.007))
-        z = t
-        for j, (col, thick) in enumerate(layers):
-            grow = 0.0015 if col == filling else 0.0
-            d.box(
-                f"sandwich_{k}_{j}",
-                (half[0] + grow, half[1] + grow, thick / 2),
-                (cx, -sy - t / 4, z + thick / 2),
-                "organic",
-                col,
-            )
-            z += thick
-    # round fruit in the front small pocket (+y)
-    fruit = d.choice(["red", "green", "purple", "orange"])
-    r = min(d.uniform(0.0085, 0.01), sy * 0.45 - 0.001)
-    n = max(2, int((px1 - px0) / (2 * r + 0.001)))
-    for k in range(2 * n):
-        cx = px0 + (px1 - px0) * (k % n + 0.5) / n
-        cy = sy + t / 4 + (k // n - 0.5) * sy * 0.9
-        d.sphere(f"fruit_{k}", r, (cx, cy, t + r), "organic", fruit)
-        d.upright(
-            f"stalk_{k}",
-            0.0008,
-            0.003,
-            t + 2 * r - 0.001,
+    pw = px1 - px0
+    d.box("divider_small", (pw / 2, t / 2, wall), ((px0 + px1) / 2, 0, t + wall), "plastic", color)
+    # white rice heaped in its half, a pickled plum in the middle, seaweed or sesame on it
+    rx0, rx1 = -hx + t, split - t / 2
+    rice_top = h - 0.003
+    rice = ((rx1 - rx0) / 2, hy - t, (rice_top - t) / 2)
+    rc = ((rx0 + rx1) / 2, 0.0)
+    d.box("rice", rice, (rc[0], rc[1], t + rice[2]), "organic", "white")
+    d.ellipsoid(
+        "rice_heap",
+        (rice[0] * 0.95, rice[1] * 0.95, 0.005),
+        (rc[0], rc[1], rice_top),
+        "organic",
+        "white",
+        visual_only=True,
+    )
+    d.ellipsoid(
+        "umeboshi", (0.01, 0.01, 0.0065), (rc[0], rc[1], rice_top + 0.005), "organic", "red"
+    )
+    if d.rng.random() < 0.6:
+        d.box(
+            "nori",
+            (rice[0] * 0.95, 0.007, 0.0006),
+            (rc[0], -rice[1] * 0.55, rice_top + 0.0035),
             "organic",
-            "green",
-            xy=(cx, cy),
+            "black",
             visual_only=True,
         )
-    # the lid standing open behind the box, its clips hanging from its edges
-    lean = d.uniform(0.12, 0.3)
-    quat = axis_angle_quat((1, 0, 0), lean)
-    pos = (0, -hy - 0.003 - math.sin(lean) * hy, h + math.cos(lean) * hy)
-    d.add("lid", "box", (hx + 0.002, 0.003, hy + 0.002), pos, "plastic", lid, quat=quat)
+    else:
+        for k in range(6):  # black sesame seeds
+            sx = rc[0] + rice[0] * d.uniform(-0.7, 0.7)
+            sy = rc[1] + rice[1] * d.uniform(-0.75, -0.3)
+            d.ellipsoid(
+                f"sesame_{k}",
+                (0.0015, 0.0009, 0.0006),
+                (sx, sy, rice_top + 0.0036),
+                "organic",
+                "black",
+                visual_only=True,
+            )
+    # the side pocket at +y: broccoli, sausages or cherry tomatoes, a rolled omelette
+    sy0, sy1 = t / 2, hy - t
+    cy = (sy0 + sy1) / 2
+    bed = h - t - 0.022  # a lettuce leaf lifts them up to the rim
+    d.box(
+        "lettuce",
+        (pw / 2, (sy1 - sy0) / 2, bed / 2),
+        ((px0 + px1) / 2, cy, t + bed / 2),
+        "organic",
+        "green",
+    )
+    t_food = t + bed
+    bx = px0 + pw * 0.18
+    br = min(0.0085, (sy1 - sy0) / 3.6)
+    d.upright("broccoli_stalk", 0.0035, 0.01, t_food, "organic", "green", xy=(bx, cy))
+    for k, (ox, oy) in enumerate(((-0.7, -0.6), (0.7, -0.6), (-0.5, 0.7), (0.6, 0.6))):
+        d.sphere(
+            f"broccoli_{k}",
+            br,
+            (bx + ox * br, cy + oy * br, t_food + 0.01 + br * 0.5),
+            "organic",
+            "green",
+        )
+    egg_x = px0 + pw * 0.68
+    for k in range(2):  # rolled omelette slices standing on their cut face
+        x = egg_x + k * 0.0135
+        d.box(
+            f"omelette_{k}",
+            (0.0065, (sy1 - sy0) * 0.4, 0.011),
+            (x, cy, t_food + 0.011),
+            "organic",
+            "yellow",
+        )
+        d.box(
+            f"omelette_roll_{k}",
+            (0.0066, (sy1 - sy0) * 0.3, 0.0004),
+            (x, cy, t_food + 0.0223),
+            "organic",
+            "orange",
+            visual_only=True,
+        )
+    sx = px0 + pw * 0.45
+    if d.rng.random() < 0.5:
+        for k in range(2):
+            d.rod(
+                f"sausage_{k}",
+                0.0045,
+                (sy1 - sy0) * 0.8,
+                (sx + (k - 0.5) * 0.0085, cy, t_food + 0.0045),
+                "organic",
+                "red",
+                axis="y",
+                capsule=True,
+            )
+    else:
+        for k in range(2):
+            y = cy + (k - 0.5) * (sy1 - sy0) * 0.45
+            d.sphere(f"cherry_tomato_{k}", 0.0065, (sx, y, t_food + 0.0065), "organic", "red")
+    # the clip-lock lid, taken off and put under the box, as at a lunch table
+    d.box("lid", (hx + 0.005, hy + 0.005, 0.002), (0.004, 0.003, -0.002), "plastic", lid)
+    d.frame("lid_rim", (hx + 0.005, hy + 0.005), 0.003, -0.009, 0.005, "plastic", lid)
     d.frame("seal", (hx - t, hy - t), 0.002, h, 0.001, "silicone", "gray")
     for k, sign in enumerate((-1, 1)):
+        d.box(
+            f"clip_side_{k}",
+            (0.0025, 0.014, 0.009),
+            (sign * (hx + 0.0025), 0, h - 0.011),
+            "plastic",
+            clip,
+        )
         d.box(
             f"clip_{k}",
             (0.015, 0.0025, 0.009),
@@ -704,16 +766,12 @@ def lunch_box_3(d: Design) -> Traits:
             "plastic",
             clip,
         )
-        d.box(
-            f"clip_side_{k}",
-            (0.0025, 0.012, 0.009),
-            (sign * (hx + 0.0025), 0, h - 0.011),
-            "plastic",
-            clip,
-        )
-    x0, x1 = -hx + t, split - t / 2
+    # the free pocket: the side pocket at -y
     d.interior(
-        ((x1 - x0) / 2 - 0.003, hy - t - 0.003), floor_z=t, rim_z=h, center=((x0 + x1) / 2, 0.0)
+        (pw / 2 - 0.003, (hy - t - t / 2) / 2 - 0.003),
+        floor_z=t,
+        rim_z=h,
+        center=((px0 + px1) / 2, -(hy - t + t / 2) / 2),
     )
     return Traits(tuple(dict.fromkeys((color, lid))), "plastic", "cuboid")
 

@@ -582,6 +582,68 @@ def stamp(d: Design) -> Traits:
     return Traits((color,), "plastic", "cuboid")
 
 
+@revised("stamp", 3)
+def stamp_3(d: Design) -> Traits:
+    """Revision 3: the classic rubber stamp: a turned wooden handle (a round knob on a slim
+    waisted neck and a collar) on a grained wooden block, a white index label on top printed
+    with the stamp's framed red imprint, and a thick red rubber die on a gray foam cushion
+    under the block (the first's boxy self-inking stamp read as a mailbox)."""
+    ink = d.choice(["red", "red", "blue", "black", "purple"])
+    wood = d.choice(["brown", "brown", "beige"])
+    knob = d.choice([wood, wood, "black", "red"])
+    knob_mat = "wood" if knob == wood else "plastic"
+    lx, ly = d.uniform(0.045, 0.058), d.uniform(0.026, 0.034)
+    block = d.uniform(0.013, 0.017)
+    die, foam = d.uniform(0.004, 0.005), 0.002
+    d.slab("die", (lx / 2 - 0.0008, ly / 2 - 0.0008, die / 2), 0.0, "rubber", "red")
+    d.slab("foam", (lx / 2 - 0.0012, ly / 2 - 0.0012, foam / 2), die, "rubber", "gray")
+    z = die + foam
+    d.slab("block", (lx / 2, ly / 2, block / 2), z, "wood", wood)
+    z += block
+    # the index label: the stamp's imprint framed in its ink
+    d.slab("label", (lx * 0.42, ly * 0.4, 0.0002), z, "paper", "white", visual_only=True)
+    fx, fy = lx * 0.36, ly * 0.32
+    for k, sign in enumerate((-1, 1)):
+        d.slab(
+            f"imprint_x{k}",
+            (0.0006, fy, 0.0002),
+            z + 0.0002,
+            "paper",
+            ink,
+            xy=(sign * fx, 0),
+            visual_only=True,
+        )
+        d.slab(
+            f"imprint_y{k}",
+            (fx, 0.0006, 0.0002),
+            z + 0.0002,
+            "paper",
+            ink,
+            xy=(0, sign * fy),
+            visual_only=True,
+        )
+    for j, (frac, y) in enumerate(((0.7, 0.35), (0.5, -0.3))):
+        d.slab(
+            f"imprint_line_{j}",
+            (fx * frac, fy * 0.16, 0.0002),
+            z + 0.0002,
+            "paper",
+            ink,
+            xy=(0, y * fy),
+            visual_only=True,
+        )
+    # the turned handle
+    d.upright("collar", 0.0105, 0.004, z, knob_mat, knob)
+    neck = d.uniform(0.026, 0.032)
+    d.upright("neck", 0.0062, neck, z + 0.004, knob_mat, knob)
+    d.ellipsoid("waist", (0.0085, 0.0085, 0.007), (0, 0, z + 0.006), knob_mat, knob)
+    kr = d.uniform(0.0125, 0.015)
+    top = z + 0.004 + neck
+    d.ellipsoid("knob", (kr, kr, kr * 0.78), (0, 0, top + kr * 0.45), knob_mat, knob)
+    colors = (wood,) if knob == wood else (wood, knob)
+    return Traits(colors, "wood", "T-shape")
+
+
 @generator("staples_box", size=(0.05, 0.085), synonyms=("box of staples", "staples box"))
 def staples_box(d: Design) -> Traits:
     color = d.choice(["red", "blue", "yellow", "green", "black", "orange"])
@@ -726,81 +788,74 @@ def sticky_notes(d: Design) -> Traits:
 
 @revised("sticky_notes", 3)
 def sticky_notes_3(d: Design) -> Traits:
-    """Revision 3: a thick square pad of bright notes, its sheets lined along the edges,
-    the top note peeling up from its glued edge with a scribbled note on it (the thin
-    plain slab read as a folder, an envelope or a book)."""
-    notes = ["yellow", "yellow", "yellow", "pink", "blue", "green", "orange"]
-    first = d.choice(notes)
-    second = d.choice([c for c in notes if c != first]) if d.rng.random() < 0.3 else first
-    side = d.uniform(0.058, 0.07)
-    thick = d.uniform(0.014, 0.022)
+    """Revision 3: a thick, exactly square pad of bright sticky notes with no binding and
+    nothing written on it: either plain canary yellow (or one bright colour) with its sheets
+    showing as fine lines round the sides, or a neon pad in bands of colours; the top note's
+    free end lifts a little off its glued band and the note under it sits a little turned
+    (the first's scribbled lines and steep peeled sheet read as a notepad)."""
+    neon = ["yellow", "pink", "green", "orange", "blue"]
+    multi = d.rng.random() < 0.4
+    first = d.choice(["yellow", "yellow", "yellow", "pink", "orange", "green"])
+    side = d.uniform(0.064, 0.0695)  # square; a 0.08 m gripper still closes on it
+    thick = d.uniform(0.014, 0.02)
     d.slab("pad", (side / 2, side / 2, thick / 2), 0.0, "paper", first)
-    edge = "white" if first != "white" else "gray"
-    sheets = 7
-    for k in range(1, sheets):  # sheet lines round the pad's sides
-        z = thick * k / sheets
-        color = second if (second != first and k % 2) else edge
-        for j, (hx, hy, x, y) in enumerate(
-            (
-                (side / 2 + 0.0002, 0.00018, 0, side / 2),
-                (side / 2 + 0.0002, 0.00018, 0, -side / 2),
-                (0.00018, side / 2 + 0.0002, side / 2, 0),
-                (0.00018, side / 2 + 0.0002, -side / 2, 0),
-            )
-        ):
-            d.box(
-                f"sheet_line_{k}_{j}",
-                (hx, hy, 0.00022),
-                (x, y, z),
-                "paper",
-                color,
-                visual_only=True,
-            )
-    glue = side * 0.22  # the glued band along -x stays flat, the rest lifts
+    colors = [first]
+    if multi:  # bands of neon colours round the sides
+        bands = d.choice([4, 5])
+        for k in range(1, bands):
+            color = d.choice([c for c in neon if c != colors[-1]])
+            colors.append(color)
+            band = (side / 2 + 0.0002, side / 2 + 0.0002, thick / bands / 2)
+            d.slab(f"band_{k}", band, k * thick / bands, "paper", color, visual_only=True)
+    else:  # the sheets' edges
+        for k in range(1, 6):
+            z = thick * k / 6
+            for j, (hx, hy, x, y) in enumerate(
+                (
+                    (side / 2 + 0.0002, 0.00015, 0, side / 2),
+                    (0.00015, side / 2 + 0.0002, side / 2, 0),
+                )
+            ):
+                d.box(
+                    f"sheet_edge_{k}_{j}",
+                    (hx, hy, 0.00016),
+                    (x, y, z),
+                    "paper",
+                    "white",
+                    visual_only=True,
+                )
+    top = colors[-1]
+    under = colors[-2] if multi else first
+    d.box(
+        "turned_note",
+        (side / 2 - 0.0005, side / 2 - 0.0005, 0.0002),
+        (0.0012, -0.001, thick + 0.0002),
+        "paper",
+        under,
+        yaw=d.uniform(0.07, 0.12),
+        visual_only=True,
+    )
+    glue = side * 0.2  # the glued band along -x stays flat, the rest lifts a little
+    z = thick + 0.0006
     d.box(
         "glued_band",
-        (glue / 2, side / 2, 0.0003),
-        (-side / 2 + glue / 2, 0, thick + 0.0003),
+        (glue / 2, side / 2, 0.0002),
+        (-side / 2 + glue / 2, 0, z),
         "paper",
-        first,
+        top,
         visual_only=True,
     )
-    lift = d.uniform(0.18, 0.3)
+    lift = d.uniform(0.1, 0.16)
     free = side - glue
-    hinge = (-side / 2 + glue, 0.0, thick + 0.0003)
-    pitch = axis_angle_quat((0, 1, 0), -lift)
-    centre = (
-        hinge[0] + math.cos(lift) * free / 2,
-        0.0,
-        hinge[2] + math.sin(lift) * free / 2,
-    )
+    centre = (-side / 2 + glue + math.cos(lift) * free / 2, 0.0, z + math.sin(lift) * free / 2)
     d.add(
-        "curl",
+        "lifted_note",
         "box",
-        (free / 2, side / 2, 0.0003),
+        (free / 2, side / 2, 0.0002),
         centre,
         "paper",
-        first,
-        quat=pitch,
+        top,
+        quat=axis_angle_quat((0, 1, 0), -lift),
         visual_only=True,
     )
-    ink = d.choice(["blue", "black", "red"])
-    for k in range(d.choice([3, 4])):  # scribbled lines on the lifted note
-        u = -free * 0.3 + k * free * 0.17
-        width = side * d.uniform(0.25, 0.36)
-        pos = (
-            hinge[0] + math.cos(lift) * (free / 2 + u) - math.sin(lift) * 0.0005,
-            d.uniform(-0.05, 0.05) * side,
-            hinge[2] + math.sin(lift) * (free / 2 + u) + math.cos(lift) * 0.0005,
-        )
-        d.add(
-            f"scribble_{k}",
-            "box",
-            (0.0007, width, 0.0002),
-            pos,
-            "paper",
-            ink,
-            quat=pitch,
-            visual_only=True,
-        )
-    return Traits(tuple(dict.fromkeys((first, second))), "paper", "cuboid")
+    return Traits(tuple(dict.fromkeys((top, under))), "paper", "cuboid")

@@ -2,9 +2,11 @@
 
 from __future__ import annotations
 
+import dataclasses
 import math
 
 from ..design import Design, Traits
+from ..parts import axis_angle_quat, quat_mul
 from .registry import generator, revised
 
 GRIPS = ["red", "blue", "yellow", "black", "orange", "green"]
@@ -176,52 +178,97 @@ def pliers(d: Design) -> Traits:
     return Traits((grip, steel), "metal", "elongated")
 
 
+def _turn_parts(d: Design, yaw: float) -> None:
+    """Turn every part built so far by ``yaw`` about the vertical axis through the origin
+    (to lay a long tool across the close-up's view)."""
+    c, s = math.cos(yaw), math.sin(yaw)
+    q = axis_angle_quat((0, 0, 1), yaw)
+    d.parts = [
+        dataclasses.replace(
+            p,
+            pos=(p.pos[0] * c - p.pos[1] * s, p.pos[0] * s + p.pos[1] * c, p.pos[2]),
+            quat=tuple(float(v) for v in quat_mul(q, p.quat)),
+        )
+        for p in d.parts
+    ]
+
+
 @revised("pliers", 3)
 def pliers_3(d: Design) -> Traits:
-    """Revision 3: pliers lying flat, seen from above: two handles in rubber sleeves with
-    flared ends spreading wide in a V from a round pivot with a rivet, and short tapering
-    jaws (long and slender on needle-nose pliers) closed to a point, with serrated teeth
-    and the rounded grip opening by the pivot (the first, nearly parallel arms, read as a
-    clothespin or a hair straightener)."""
-    grip = d.choice(GRIPS)
-    steel = d.choice(["silver", "silver", "gray", "black"])
-    needle = d.choice([True, False])
-    length, t = d.uniform(0.15, 0.2), d.uniform(0.009, 0.011)
-    jaw = length * d.uniform(0.33, 0.38) if needle else length * d.uniform(0.22, 0.26)
-    handle, spread = length - jaw, d.uniform(0.03, 0.036)
-    jaw_w = 0.0035 if needle else 0.0055
-    d.upright("pivot", 0.011, t, 0.0, "metal", steel)
-    d.upright("rivet", 0.0045, t + 0.001, 0.0, "metal", "silver")
-    d.upright("rivet_slot", 0.0015, 0.0003, t + 0.001, "metal", "black", visual_only=True)
-    r = t / 2 + 0.0012
+    """Revision 3: classic combination pliers lying flat, jaws closed: a chunky head tapering
+    from a round joint with a rivet to a flat, square, polished nose with serrated jaws
+    meeting on a seam, the oval pipe grip behind the nose, and two gently spread straight
+    handles in thick insulated two-tone sleeves with collars (the first, thin arms, read as
+    a clothespin; pointed jaws on wide V handles read as pruning shears)."""
+    grip = d.choice(["red", "red", "blue", "yellow", "orange", "red"])
+    band = d.choice(["yellow", "black"]) if grip in ("red", "blue") else d.choice(["red", "black"])
+    steel = d.choice(["black", "gray", "silver"])
+    polish = "white" if steel == "silver" else "silver"
+    jaw_len, head_w = d.uniform(0.04, 0.045), d.uniform(0.011, 0.0125)
+    handle_len, spread = d.uniform(0.115, 0.13), d.uniform(0.02, 0.024)
+    t = d.uniform(0.011, 0.013)
+    z = t / 2
+    r = d.uniform(0.0065, 0.0072)
+    d.upright("boss", head_w * 1.12, t, 0.0, "metal", steel)
+    d.upright("rivet", 0.0045, t + 0.001, 0.0, "metal", polish)
+    nose = jaw_len * 0.42
+    for k, s in enumerate((-1, 1)):
+        d.segment(
+            f"cheek_{k}",
+            "ellipsoid",
+            (-0.006, s * head_w * 0.62, z),
+            (jaw_len - nose * 0.35, s * 0.0036, z),
+            (head_w * 0.62, z * 0.98),
+            "metal",
+            steel,
+        )
+        d.box(
+            f"jaw_{k}",
+            (nose / 2, 0.0031, z),
+            (jaw_len - nose / 2, s * 0.0031, z),
+            "metal",
+            polish,
+        )
+        # the handle: a steel arm, then the sleeve with its collar and end band
+        knee = (-0.017, -s * 0.0085)
+        end = (-handle_len, -s * spread)
+        d.segment(
+            f"arm_{k}",
+            "box",
+            (-0.004, -s * 0.005, z),
+            (*knee, z * 0.9),
+            (0.0048, z * 0.62),
+            "metal",
+            steel,
+        )
+        collar = tuple(a + 0.08 * (b - a) for a, b in zip(knee, end, strict=True))
+        mid = tuple(a + 0.8 * (b - a) for a, b in zip(knee, end, strict=True))
+        d.segment(f"collar_{k}", "capsule", (*knee, r), (*collar, r), r * 1.1, "rubber", band)
+        d.segment(f"grip_{k}", "capsule", (*collar, r), (*mid, r), r, "rubber", grip)
+        d.segment(f"grip_end_{k}", "capsule", (*mid, r), (*end, r), r * 1.05, "rubber", band)
+    # the seam with its teeth, and the pipe grip's opening
+    x0 = jaw_len - nose
     d.box(
-        "jaw_seam",
-        ((jaw - 0.016) / 2, 0.0004, 0.0003),
-        ((jaw + 0.016) / 2, 0, t * 0.92),
+        "seam",
+        (nose / 2, 0.0004, 0.0003),
+        (x0 + nose / 2, 0, t),
         "metal",
         "black",
         visual_only=True,
     )
-    for k, s in enumerate((-1, 1)):
-        root, tip = (-0.004, s * jaw_w * 0.9, t / 2), (jaw, s * 0.0006, t / 2)
-        d.segment(f"jaw_{k}", "ellipsoid", root, tip, (jaw_w, t / 2), "metal", steel)
-        d.upright(
-            f"grip_hole_{k}",
-            0.0022,
-            0.0004,
-            t * 0.92,
-            "metal",
-            "black",
-            xy=(0.014, s * 0.0028),
-            visual_only=True,
-        )
-        bend = (-handle * 0.25, s * spread * 0.45, t / 2)
-        d.segment(
-            f"arm_{k}", "box", (-0.006, s * 0.006, t / 2), bend, (0.004, t * 0.4), "metal", steel
-        )
-        end = (-handle + r, s * spread, r)
-        d.segment(f"grip_{k}", "capsule", (bend[0], bend[1], r), end, r, "rubber", grip)
-        d.sphere(f"grip_flare_{k}", r * 1.25, (end[0] - r * 0.3, end[1], r * 1.25), "rubber", grip)
+    for j in range(5):
+        x = x0 + nose * (0.12 + 0.19 * j)
+        d.box(f"tooth_{j}", (0.0005, 0.0022, 0.0003), (x, 0, t), "metal", "black", visual_only=True)
+    d.add(
+        "pipe_grip",
+        "ellipsoid",
+        (0.0055, 0.0028, 0.0006),
+        (x0 - 0.005, 0, t + 0.0001),
+        "metal",
+        "black",
+        visual_only=True,
+    )
+    _turn_parts(d, math.radians(d.uniform(55.0, 70.0)))  # the head to the lower left
     return Traits((grip, steel), "metal", "elongated")
 
 
