@@ -13,6 +13,10 @@ camera and the ratio to PickCube-v1's. Medians of ``--repeats`` interleaved roun
 episode's objects removed, the table and floor removed, without shadows, and (the Franka) with
 ManiSkill's full visual meshes; then the three cameras together at 128, 224 and 320 pixels a
 side. Every figure is a ratio to the whole scene's time in the same round.
+
+``--robot-share`` times only the whole scene against the same scene with the robot's render
+bodies removed, per robot, over ``--repeats`` interleaved rounds (more rounds than the
+profile's, for the one ratio the Franka's render target is stated in: whole / without robot).
 """
 
 from __future__ import annotations
@@ -152,6 +156,23 @@ def profile(size: tuple[int, int], frames: int, repeats: int) -> None:
             print(f"| {name} | " + " | ".join(cells) + f" | {sum(cameras.values()) / total:.2f}x |")
 
 
+def robot_share(size: tuple[int, int], frames: int, repeats: int) -> None:
+    """Per robot: the three cameras' time with and without the robot's render bodies
+    (medians of ``repeats`` interleaved rounds) and their ratio."""
+    print(f"robot share at {size[0]} x {size[1]}, rgb, medians of {repeats} interleaved rounds")
+    for robot in ("franka", "piperx"):
+        rounds: dict[str | None, list[float]] = {None: [], "robot": []}
+        for _ in range(repeats):
+            for hide, times in rounds.items():
+                cameras = per_camera_ms("PickCategory-InstructMove", robot, size, frames, hide)
+                times.append(sum(cameras.values()))
+        whole, bare = (statistics.median(rounds[k]) for k in (None, "robot"))
+        print(
+            f"{robot:7s} whole {whole:5.1f} ms   without the robot {bare:5.1f} ms   "
+            f"{whole / bare:.2f}x"
+        )
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__)
     parser.add_argument("--width", type=int, default=128)
@@ -159,10 +180,16 @@ def main() -> None:
     parser.add_argument("--frames", type=int, default=20)
     parser.add_argument("--repeats", type=int, default=3)
     parser.add_argument("--profile", action="store_true", help="where a render's time goes")
+    parser.add_argument(
+        "--robot-share", action="store_true", help="whole scene vs without the robot"
+    )
     args = parser.parse_args()
     size = (args.width, args.height)
     if args.profile:
         profile(size, args.frames, args.repeats)
+        return
+    if args.robot_share:
+        robot_share(size, args.frames, args.repeats)
         return
     rounds: dict[str, list[dict]] = {robot or env_id: [] for env_id, robot in ENVS}
     for _ in range(args.repeats):  # interleaved: the renderer's first start-up is one round's
