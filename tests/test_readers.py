@@ -201,3 +201,20 @@ def test_close_ups_can_show_another_library_revision():
     assert {i.uuid for i in mice.instances} == {
         instance_uuid("mouse", i.index, 2) for i in mice.instances
     }
+
+
+def test_in_scene_shows_an_object_in_the_camera_that_shows_most_of_it():
+    from types import SimpleNamespace
+
+    pixels = {"ext": 30, "side": 50, "wrist": 400}
+    views = SimpleNamespace(
+        cameras=list(pixels),
+        scene=2,  # the first two are scene cameras
+        mask=lambda camera, k: np.arange(1000) < pixels[camera] * (k + 1),
+    )
+    assert material.best_camera(views, 0) == "side"
+    assert material.best_camera(views, 0, "every") == "wrist"
+    pixels |= {"ext": 0, "side": 0}
+    assert material.best_camera(views, 0) == "wrist"  # no scene camera shows it
+    with pytest.raises(ValueError, match="'wrists' is not one of"):
+        material.best_camera(views, 0, "wrists")

@@ -27,7 +27,7 @@ def _cmd_draw(args: argparse.Namespace) -> int:
         from instructmove_ms.assets.snapshot import load_snapshot
 
         key = material.in_scene(
-            load_snapshot(args.snapshot), args.seed, out, args.set_version, args.only
+            load_snapshot(args.snapshot), args.seed, out, args.set_version, args.only, args.cameras
         )
     elif kind == "instructions":
         import instructmove_ms  # noqa: F401  (registration)
@@ -74,7 +74,7 @@ KINDS = ("close-ups", "in-scene", "instructions", "episodes")
 
 def add_parsers(sub: argparse._SubParsersAction) -> None:
     from instructmove_ms.assets.snapshot import DEFAULT_SNAPSHOT
-    from instructmove_ms.readers import SOURCES
+    from instructmove_ms.readers import CAMERAS, SOURCES
 
     group = _add_group(sub, "readers", "material for fresh readers and the scorer of answers")
     helps = {
@@ -91,6 +91,14 @@ def add_parsers(sub: argparse._SubParsersAction) -> None:
             p.add_argument("--snapshot", default=DEFAULT_SNAPSHOT, help="(default: %(default)s)")
             p.add_argument(
                 "--only", nargs="+", metavar="CATEGORY", help="these categories (default: all)"
+            )
+        if kind == "in-scene":
+            p.add_argument(
+                "--cameras",
+                choices=CAMERAS,
+                default="scene",
+                help="show each object in the scene camera that shows most of it, or in any "
+                "camera the policy reads, wrist cameras too (default: %(default)s)",
             )
         if kind == "close-ups":
             p.add_argument(

@@ -3,3 +3,6 @@ and a deterministic scorer of their answers. See docs/readers.md."""
 
 #: Where sampled instructions come from: the stored sets, training seeds, or half of each.
 SOURCES = ("both", "stored", "train")
+#: Which of the robot's cameras in-scene material may show an object in: its scene cameras
+#: (a wrist camera only where none shows it), or every camera the policy reads.
+CAMERAS = ("scene", "every")

@@ -20,7 +20,7 @@ from ..episode import EpisodeSpec
 from ..files import write_json, write_text
 from ..heldout import SET_VERSION, load_set
 from ..splits import EVAL_SEED_BASE, EVAL_SPLITS
-from . import SOURCES, briefs
+from . import CAMERAS, SOURCES, briefs
 from .pictures import boxed, cell_owners, numbered, ruled, write_pages, write_png
 
 #: Scene cameras, then the others, at the resolution policies are trained on.
@@ -161,18 +161,29 @@ def _occurrences(version: int | None) -> dict[str, list[tuple[str, str, str, int
     return found
 
 
+def best_camera(views, k: int, cameras: str = "scene") -> str:
+    """The camera of ``views`` (a ``SceneRenderer.views``) that shows most of object ``k``,
+    among ``cameras`` (one of ``CAMERAS``)."""
+    if cameras not in CAMERAS:
+        raise ValueError(f"cameras {cameras!r} is not one of {CAMERAS}")
+    scene = views.cameras[: views.scene]
+    if cameras == "every" or not any(views.mask(c, k).any() for c in scene):
+        scene = views.cameras
+    return max(scene, key=lambda c: int(views.mask(c, k).sum()))
+
+
 def in_scene(
     catalog: Catalog,
     seed: int,
     out: Path,
     version: int | None = None,
     only: list[str] | None = None,
+    cameras: str = "scene",
 ) -> Path:
     """Every category of ``catalog`` (or of ``only``) that a stored set holds, in a random
-    stored episode holding it, boxed in the scene camera that shows most of it (a wrist
-    camera where no scene camera shows it) at the policy's resolution, in a random order:
-    pages ``in_scene_N.png``. The key names the categories no stored episode holds
-    (``absent``)."""
+    stored episode holding it, boxed in the camera that shows most of it (``best_camera``)
+    at the policy's resolution, in a random order: pages ``in_scene_N.png``. The key names
+    the categories no stored episode holds (``absent``)."""
     rng = np.random.default_rng(seed)
     found = _occurrences(version)
     wanted = _categories(catalog, only)
@@ -187,9 +198,7 @@ def in_scene(
             spec = load_set(env_id, robot, split, version=version)[e]
             source = f"v{version or SET_VERSION}/{env_id}/{robot}/{split}#{e}"
             views = renderer.views(env_id, spec)
-            scene = views.cameras[: views.scene]
-            pool = scene if any(views.mask(c, k).any() for c in scene) else views.cameras
-            best = max(pool, key=lambda c: int(views.mask(c, k).sum()))
+            best = best_camera(views, k, cameras)
             tiles.append(numbered(boxed(views.rgb[best], views.mask(best, k)), n))
             items.append(
                 {
@@ -205,7 +214,13 @@ def in_scene(
     write_pages(tiles, _reader(out, "in_scene"), "in_scene")
     absent = sorted(set(wanted) - set(found))
     return _write_key(
-        out, "in_scene", seed, items, set_version=version or SET_VERSION, absent=absent
+        out,
+        "in_scene",
+        seed,
+        items,
+        set_version=version or SET_VERSION,
+        absent=absent,
+        cameras=cameras,
     )
 
 
