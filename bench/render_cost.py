@@ -157,19 +157,28 @@ def profile(size: tuple[int, int], frames: int, repeats: int) -> None:
 
 
 def robot_share(size: tuple[int, int], frames: int, repeats: int) -> None:
-    """Per robot: the three cameras' time with and without the robot's render bodies
-    (medians of ``repeats`` interleaved rounds) and their ratio."""
-    print(f"robot share at {size[0]} x {size[1]}, rgb, medians of {repeats} interleaved rounds")
+    """Per robot: the three cameras' time with and without the robot's render bodies, and
+    their ratio, from ``repeats`` rounds of the two measured back to back (in alternating
+    order, so a drift between rounds or a second-place penalty cancels): medians, and the
+    middle half of the rounds' ratios."""
+    print(f"robot share at {size[0]} x {size[1]}, rgb, {repeats} paired rounds")
     for robot in ("franka", "piperx"):
-        rounds: dict[str | None, list[float]] = {None: [], "robot": []}
-        for _ in range(repeats):
-            for hide, times in rounds.items():
-                cameras = per_camera_ms("PickCategory-InstructMove", robot, size, frames, hide)
-                times.append(sum(cameras.values()))
-        whole, bare = (statistics.median(rounds[k]) for k in (None, "robot"))
+        whole, bare, ratios = [], [], []
+        for k in range(repeats):
+            order = (None, "robot") if k % 2 == 0 else ("robot", None)
+            ms = {
+                hide: sum(
+                    per_camera_ms("PickCategory-InstructMove", robot, size, frames, hide).values()
+                )
+                for hide in order
+            }
+            whole.append(ms[None])
+            bare.append(ms["robot"])
+            ratios.append(ms[None] / ms["robot"])
+        q1, median, q3 = statistics.quantiles(ratios, n=4)
         print(
-            f"{robot:7s} whole {whole:5.1f} ms   without the robot {bare:5.1f} ms   "
-            f"{whole / bare:.2f}x"
+            f"{robot:7s} whole {statistics.median(whole):5.1f} ms   without the robot "
+            f"{statistics.median(bare):5.1f} ms   {median:.2f}x (middle half {q1:.2f}-{q3:.2f}x)"
         )
 
 
