@@ -362,6 +362,7 @@ WORDS: dict[str, tuple[str, ...]] = {
     "eraser": ("ERASER",),
     "staples": ("STAPLES",),
     "cheese": ("STRING", "CHEESE"),
+    "cookies": ("COOKIES",),
 }
 #: The Hershey font words are printed in (pure integer rasterisation: the same pixels on
 #: every machine; no font file).

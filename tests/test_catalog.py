@@ -47,25 +47,31 @@ def test_generation_is_deterministic_and_uuids_stable():
     assert generate_instance("mug", 4).parts != a.parts
 
 
+def assert_exact_annotations(inst) -> None:
+    """What every instance's annotations promise (snapshots, and revisions before one freezes
+    them: tests/test_revisions.py)."""
+    lo, hi = inst.bounds
+    assert abs(lo[2]) < 1e-9, "objects rest on z = 0"
+    assert abs(lo[0] + hi[0]) < 1e-9 and abs(lo[1] + hi[1]) < 1e-9, "centred in xy"
+    assert math.isclose(
+        inst.mass, sum(p.volume * p.density for p in inst.parts if not p.visual_only)
+    )
+    assert 0.005 < inst.mass < 2.0
+    assert 1 <= len(inst.colors) <= 2 and set(inst.colors) <= set(COLORS)
+    assert inst.shape in SHAPES
+    assert inst.size == (
+        "small" if inst.height < 0.05 else "medium" if inst.height < 0.12 else "large"
+    )
+    # the named colours are really there: every one is the colour of some part
+    assert set(inst.colors) <= {p.color for p in inst.parts}
+    if inst.is_graspable and not inst.is_container:  # containers are held by the wall
+        assert min(inst.dims[:2]) < 0.08, "fits a parallel gripper from above"
+
+
 @pytest.mark.parametrize("category", sorted(GENERATORS))
 def test_annotations_are_exact(category):
     for inst in load_snapshot().of_category(category):
-        lo, hi = inst.bounds
-        assert abs(lo[2]) < 1e-9, "objects rest on z = 0"
-        assert abs(lo[0] + hi[0]) < 1e-9 and abs(lo[1] + hi[1]) < 1e-9, "centred in xy"
-        assert math.isclose(
-            inst.mass, sum(p.volume * p.density for p in inst.parts if not p.visual_only)
-        )
-        assert 0.005 < inst.mass < 2.0
-        assert 1 <= len(inst.colors) <= 2 and set(inst.colors) <= set(COLORS)
-        assert inst.shape in SHAPES
-        assert inst.size == (
-            "small" if inst.height < 0.05 else "medium" if inst.height < 0.12 else "large"
-        )
-        # the named colours are really there: every one is the colour of some part
-        assert set(inst.colors) <= {p.color for p in inst.parts}
-        if inst.is_graspable and not inst.is_container:  # containers are held by the wall
-            assert min(inst.dims[:2]) < 0.08, "fits a parallel gripper from above"
+        assert_exact_annotations(inst)
 
 
 def test_splits_are_disjoint():

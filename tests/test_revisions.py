@@ -43,15 +43,16 @@ REVISED_3_DESK: dict[str, tuple[str, str | None]] = {
     "nail_clipper": ("thumb_pad", None),  # the lever arching back to a thumb pad
     "egg": ("cup_foot", None),  # standing in an egg cup
     "pliers": ("pipe_grip", "black"),  # combination pliers: flat serrated nose, pipe grip
-    "bread": ("slice_0", None),  # a sliced loaf (or a slashed baguette)
+    "bread": ("slice_0", None),  # a sliced loaf showing its crumb (or a slashed baguette)
     "potato": ("knob_0", None),
     "peach": ("cheek_0", None),  # the cleft
     "candy": ("pleat_0_0", None),  # the bow-tie twist ends
     "glue_stick": ("glue", None),  # open, the glue twisted up
-    "sticky_notes": ("lifted_note", None),  # a square pad, the top note lifting a little
+    "sticky_notes": ("curled_end", None),  # a yellow pad, the top note curling up
     "staples_box": ("strip_0", None),  # a strip of staples beside the carton
     "pen_holder": ("pen_0", None),  # pens standing in it
     "eraser": ("card_sleeve", None),
+    "correction_tape": ("roll_core", None),  # a flat dispenser, its tape roll and tip
     # reprints (``generators.reprints``): the same parts, the label printing what it is
     "canned_coke": ("body", None),  # COLA over the ribbon
     "chewing_gum": ("label", None),  # GUM beside the mint leaf
@@ -61,30 +62,33 @@ REVISED_3_DESK: dict[str, tuple[str, str | None]] = {
     "potato_chips": ("label", None),  # CHIPS beside the chip
     "coaster": ("stain_1", "brown"),  # a stack of cork coasters, a glass's ring on the top
     "tomato": ("lobe_0", None),  # red lobes round a dimple, a green star calyx
+    "biscuit": ("cookie_dome", None),  # a chocolate-chip cookie (or COOKIES pack)
 }
 #: ... electronics, bedroom, kitchenware, living-room, receptacles and tools.
 REVISED_3_ROOM: dict[str, tuple[str, str | None]] = {
     "remote_holder": ("remote_0", None),  # TV remotes standing in its pockets
-    "glasses_case": ("lens_0", "transparent"),  # open, a pair of glasses inside
+    "glasses_case": ("lens_0", "transparent"),  # open, round-rimmed glasses inside
     "presenter_clicker": ("arrow_0_0", None),  # slim, big back/forward arrow keys, laser tip
     "ac_remote": ("snowflake_0", "blue"),  # the display shows a temperature and a snowflake
     "earbud_case": ("bud_0", None),  # open, the earbuds seated inside
-    "mini_sculpture": ("arm_0", None),  # a figure with raised arms for the ring
+    "mini_sculpture": ("shoulder_0", None),  # a bust or a standing figure of a person
     "lunch_box": ("umeboshi", "red"),  # a bento: rice with a red plum, side dishes
     "placemat": ("fork_head", None),  # printed with a place setting
-    "wire_cutters": ("bevel_0", None),  # diagonal cutters: a fat bevelled head, open a little
+    "wire_cutters": ("cheek_0", None),  # diagonal cutters: a short almond head, a V open
     "peeler": ("slot", "black"),  # a slotted blade
     "hex_key": ("clip", None),  # a set of L keys in a clip
     "candle_holder": ("stub", None),  # a candlestick or chamberstick, a short unlit stub
     "basket": ("handle_0_0", None),  # woven, a twisted rim and a loop handle at each end
     "waste_bin": ("pedal", None),  # a pedal bin, its lid open, a bag over the rim
-    "storage_box": ("latch_00", None),  # clear tub, lid pushed half off, side clip latches
+    "storage_box": ("handle_front", None),  # a fabric storage box, handle cut-outs
     "phone_stand": ("hinge_top", None),  # an empty folding stand: back plate, lip, hinges
     "stamp": ("die", "red"),  # a knob-handled wooden stamp on a red rubber die
 }
 #: The reprinted categories of revision 3: their part shows it by printing words (a
 #: pattern of ``textures.PRINTED_WORDS``) where the same part drew a wordmark before.
 REPRINTED_3 = {"canned_coke", "chewing_gum", "chocolate", "juice", "milk_carton", "potato_chips"}
+#: The most parts a revised build may have.
+MAX_PARTS = 60
 #: Revision -> category -> the part that shows the revision.
 REVISED = {2: REVISED_2, 3: {**REVISED_3_BATH, **REVISED_3_DESK, **REVISED_3_ROOM}}
 #: (category, revision) of every revised build.
@@ -190,3 +194,23 @@ def test_the_digital_clock_shows_its_time_lit_on_a_dark_screen():
     assert 0.05 < lit.mean() < 0.5
     rows = np.flatnonzero(lit.any(axis=1))
     assert rows.min() > 0.05 * img.shape[0] and rows.max() < 0.95 * img.shape[0]
+
+
+@pytest.mark.parametrize(("category", "revision"), BUILDS)
+def test_a_revised_build_keeps_the_catalogs_promises(category, revision):
+    """Before a snapshot freezes a revision, its builds already hold what the catalog's tests
+    hold of a snapshot: exact annotations, the quality checks, an interior inside the bounds,
+    and (a CPU renderer pays per part) at most ``MAX_PARTS`` parts."""
+    from test_catalog import assert_exact_annotations
+
+    from instructmove_ms.assets.quality import check_instances
+
+    instances = [generate_instance(category, i, revision) for i in range(10)]
+    for inst in instances:
+        assert_exact_annotations(inst)
+        assert len(inst.parts) <= MAX_PARTS, (inst.uuid, len(inst.parts))
+        if inst.is_container:
+            lo, hi = inst.bounds
+            c, half = np.asarray(inst.interior.center), np.asarray(inst.interior.half)
+            assert np.all(c[:2] - half >= lo[:2]) and np.all(c[:2] + half <= hi[:2])
+    assert not [(r.category, r.failures) for r in check_instances(instances) if not r.ok]

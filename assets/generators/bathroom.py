@@ -6,7 +6,7 @@ import math
 from itertools import pairwise
 
 from ..design import Design, Point, Traits
-from ..parts import X_TO_Z, axis_angle_quat, quat_mul
+from ..parts import X_TO_Z, axis_angle_quat
 from ..textures import Texture
 from .desktop import BRIGHT
 from .registry import generator, revised
@@ -667,15 +667,11 @@ def facial_cleanser_3(d: Design) -> Traits:
     return Traits((color, cap), "plastic", "cylinder")
 
 
-#: How far a wrapped label turns its front from +x towards +y: towards a viewer in front
-#: and to the left of the object, as the contact sheets' camera is.
-FACING = 0.5
-
-
 def _wrap_label(d: Design, name: str, radius, height, z0, color, texture, xy=(0.0, 0.0)):
-    """A printed sleeve round an upright cylinder (no mass): its words face ``FACING``
-    from +x and half a turn from there."""
-    quat = quat_mul(axis_angle_quat((0, 0, 1), FACING), X_TO_Z)
+    """A printed sleeve round an upright cylinder (no mass): its words face +x and half a
+    turn from there (unturned about z: a part's bounds are its turned box, so a turn would
+    widen the object's)."""
+    quat = X_TO_Z
     center = (xy[0], xy[1], z0 + height / 2)
     d.add(
         name,

@@ -89,84 +89,49 @@ def storage_box(d: Design) -> Traits:
 
 @revised("storage_box", 3)
 def storage_box_3(d: Design) -> Traits:
-    """Revision 3: a clear plastic storage tub (a flat stacking flange round its top, a
-    ledge round its middle, a label window on a long side) with its coloured snap-on lid
-    pushed half off towards one end, the clip latches on its long sides still hooked over
-    the rim; no handle on top (the lid standing open on a hinge read as a toolbox)."""
-    color = d.choice(["transparent", "transparent", "transparent", "white"])
-    lid = d.choice(["blue", "blue", "green", "purple", "red", "gray", "black"])
-    material, t = "plastic", 0.003
-    hx, hy, h = d.uniform(0.08, 0.095), d.uniform(0.11, 0.13), d.uniform(0.085, 0.11)
+    """Revision 3: a fabric storage box (the cube that fills a shelf): soft woven walls
+    wider than tall, piped round the top in a second colour, an oval handle cut-out near
+    the top of the front and of each end, and a metal label holder on the front; open, so
+    its interior stays clear (a grey tub with its lid pushed half off read as a printer,
+    a hinged lid with a handle as a toolbox)."""
+    color = d.choice(["beige", "beige", "gray", "gray", "blue", "brown", "pink"])
+    trim = d.choice([c for c in ("brown", "black", "white", "beige") if c != color])
+    material, t = "fabric", 0.006
+    # long along y (across the camera's view), wider than tall
+    hx, hy = d.uniform(0.1, 0.125), d.uniform(0.14, 0.17)
+    h = d.uniform(0.15, 0.19)
     floor = d.open_box("box", (hx, hy), h, t, material, color, full="x")
-    flange = 0.007
-    d.frame("rim", (hx + flange, hy + flange), flange + t, h - 0.005, 0.005, material, color)
-    d.frame("ledge", (hx + 0.003, hy + 0.003), 0.006, h * 0.4, 0.003, material, color)
-    # the lid, pushed along y off the far end: it still rests on the rim over that end
-    lx, ly, lt = hx + flange + 0.002, hy + flange + 0.002, 0.005
-    slide = 2 * hy * d.uniform(0.38, 0.45)
-    cy = -slide
-    d.box("lid", (lx, ly, lt / 2), (0, cy, h + lt / 2), material, lid)
-    d.box("lid_panel", (lx * 0.7, ly * 0.78, 0.002), (0, cy, h + lt + 0.002), material, lid)
-    skirt = 0.008
-    for k, sign in enumerate((-1, 1)):
-        d.box(
-            f"lid_skirt_x{k}",
-            (0.002, ly, skirt / 2),
-            (sign * (lx - 0.002), cy, h + lt - skirt / 2),
-            material,
-            lid,
-        )
-        d.box(
-            f"lid_skirt_y{k}",
-            (lx - 0.004, 0.002, skirt / 2),
-            (0, cy + sign * (ly - 0.002), h + lt - skirt / 2),
-            material,
-            lid,
-        )
-    # clip latches on the long sides: a flap from the lid's edge down over the flange
-    for k, sign in enumerate((-1, 1)):
-        for j, y in enumerate((-hy * 0.72, -hy * 0.16)):
-            x = sign * (lx + 0.003)
-            d.box(f"latch_{k}{j}", (0.003, 0.02, 0.017), (x, y, h - 0.008), material, lid)
-            d.box(
-                f"latch_grip_{k}{j}",
-                (0.0006, 0.014, 0.0025),
-                (x + sign * 0.0031, y, h - 0.019),
-                material,
-                "black",
-                visual_only=True,
-            )
-        # the catch that a latch hooks under, left bare at the open end
-        d.box(
-            f"catch_{k}",
-            (0.003, 0.012, 0.004),
-            (sign * (hx + 0.003), hy * 0.55, h - 0.014),
-            material,
-            color,
-        )
-    # the label window on the front long side: a frame with a card in it
-    win = (hy * 0.22, h * 0.15)
-    wy, wz = hy * 0.5, h * 0.62
-    d.box(
-        "label_window",
-        (0.0012, win[0] + 0.004, win[1] + 0.004),
-        (hx + 0.0012, wy, wz),
-        material,
-        lid,
-    )
+    d.frame("piping", (hx + 0.0015, hy + 0.0015), t + 0.003, h - 0.006, 0.008, material, trim)
+    # handle cut-outs: a dark slot with round ends and a stitched rim in the trim colour
+    hz = h - 0.045
+    slots = [("front", 0, hx, "x", hy * 0.22), ("end_0", -1, hy, "y", hx * 0.3)]
+    slots.append(("end_1", 1, hy, "y", hx * 0.3))
+    for name, sign, out, axis, half in slots:
+        r = 0.012
+        for k, (depth, rad, col) in enumerate(((0.0012, r + 0.004, trim), (0.0024, r, "black"))):
+            part = f"handle_{name}" if k else f"handle_rim_{name}"
+            if axis == "x":
+                pos, size, ends = (out + depth / 2, 0, hz), (depth / 2, half, rad), "x"
+            else:
+                pos, size, ends = (0, sign * (out + depth / 2), hz), (half, depth / 2, rad), "y"
+            d.box(part, size, pos, material, col, visual_only=True)
+            for j, s in enumerate((-1, 1)):
+                c = (pos[0], s * half, hz) if axis == "x" else (s * half, pos[1], hz)
+                d.rod(f"{part}_end_{j}", rad, depth, c, material, col, axis=ends, visual_only=True)
+    # the label holder on the front, under the handle: a metal frame round a white card
+    lw, lh, lz = hy * 0.2, 0.016, h * 0.38
+    d.box("label_holder", (0.0012, lw + 0.004, lh + 0.004), (hx + 0.0012, 0, lz), "metal", "silver")
     d.box(
         "label_card",
-        (0.0006, win[0], win[1]),
-        (hx + 0.003, wy, wz),
+        (0.0006, lw, lh),
+        (hx + 0.0027, 0, lz),
         "paper",
         "white",
         visual_only=True,
-        texture=Texture("ruled", ("gray",)),  # a card to write on: nothing printed
+        texture=Texture("ruled", ("gray",)),
     )
-    y0 = cy + ly + 0.004  # the open end, clear of the lid
-    y1 = hy - t - 0.005
-    d.interior((hx - t - 0.005, (y1 - y0) / 2), floor_z=floor, rim_z=h, center=(0.0, (y0 + y1) / 2))
-    return Traits((color, lid), material, "cuboid")
+    d.interior((hx - t - 0.005, hy - t - 0.005), floor_z=floor, rim_z=h)
+    return Traits((color,), material, "cuboid")
 
 
 @generator(
@@ -235,8 +200,9 @@ def glasses_case(d: Design) -> Traits:
 
 @revised("glasses_case", 3)
 def glasses_case_3(d: Design) -> Traits:
-    """Revision 3: a hard clamshell case standing open, a pair of glasses folded inside (the
-    closed first case read as a stapler or as nothing at all)."""
+    """Revision 3: a hard clamshell case standing open, a pair of round glasses folded inside
+    in thick dark rims, with a bridge, hinges and folded temples (the closed first case read
+    as a stapler or as nothing at all; thin rims round pink discs as a contact lens case)."""
     material, color, fill = d.choice(
         [
             ("leather", "brown", 0.3),
@@ -247,9 +213,9 @@ def glasses_case_3(d: Design) -> Traits:
             ("aluminium", "silver", 0.08),
         ]
     )
-    lining = d.choice(["beige", "gray", "red"] if color != "red" else ["beige", "gray"])
-    frame = d.choice(["black", "brown", "golden", "red"])
-    length, w = d.uniform(0.15, 0.17), d.uniform(0.056, 0.064)
+    lining = d.choice(["beige", "gray", "white"] if color != "black" else ["beige", "gray"])
+    frame = d.choice([c for c in ("black", "black", "brown", "blue") if c != color])
+    length, w = d.uniform(0.15, 0.17), d.uniform(0.054, 0.059)
     hb, t = d.uniform(0.02, 0.024), 0.003
     core = length / 2 - w / 2
     kw = dict(solid_fraction=fill)
@@ -287,42 +253,64 @@ def glasses_case_3(d: Design) -> Traits:
                 **kw,
             )
     # the lid, open and leaning back on its hinge along the back edge (-y)
-    tilt = 1.9
+    tilt = 1.62  # nearly upright: the case stays narrow enough to grip across
     quat = axis_angle_quat((1, 0, 0), tilt)
-    hz = hb * 0.8
+    hz = hb * 0.45
     hinge_y, hinge_z = -w / 2, hb
     ux, uz = math.cos(tilt), math.sin(tilt)  # the lid's width axis after the turn
     lid_c = (0, hinge_y + ux * w / 2, hinge_z + uz * w / 2)
     d.add("lid", "ellipsoid", (length / 2, w / 2, hz), lid_c, material, color, quat=quat, **kw)
     d.add("hinge", "cylinder", (0.003, core * 0.5), (0, hinge_y, hinge_z), "metal", "silver")
-    # the glasses inside: two lenses in a frame, a bridge, temples folded over them
-    z = t + 0.0035
-    lens = min(core * 0.52, w / 2 - t - 0.006)
+    # the glasses inside, lenses up: two round lenses in thick rims, a bridge between them,
+    # hinge blocks at the outer edges and the temples folded under the lenses
+    z = t + 0.0045  # the frame's mid-plane
+    fw, ft = 0.0036, 0.003  # the rims' width and depth
+    bh = 0.005  # half the bridge
+    lens = min((length / 2 - t - 0.008 - bh - 2 * fw) / 2, w / 2 - t - fw - 0.004, 0.022)
+    look = ("plastic", frame)
+    ghost = dict(visual_only=True)
     for k, sign in enumerate((-1, 1)):
-        c = (sign * (lens + 0.006), 0.002, z)
+        cx = sign * (bh + fw + lens)
         d.add(
             f"lens_{k}",
             "cylinder",
-            (lens, 0.0012),
-            c,
+            (lens, 0.0006),
+            (cx, 0, z),
             "glass",
             "transparent",
             quat=X_TO_Z,
-            visual_only=True,
+            **ghost,
         )
         d.flat_ring(
-            f"rim_{k}", lens, 0.0025, 0.003, z - 0.0015, "plastic", frame, center=c[:2], segments=12
+            f"rim_{k}",
+            lens + fw / 2,
+            fw,
+            ft,
+            z - ft / 2,
+            *look,
+            center=(cx, 0),
+            segments=12,
+            **ghost,
         )
+        hinge_x = sign * (bh + 2 * fw + 2 * lens)
+        d.box(
+            f"hinge_{k}",
+            (0.0022, 0.003, ft / 2 + 0.0004),
+            (hinge_x, lens * 0.35, z),
+            *look,
+            **ghost,
+        )
+        # the temple, folded: from the hinge across under the lenses
         d.segment(
             f"temple_{k}",
             "box",
-            (sign * 0.006, -lens + 0.001, z + 0.003),
-            (sign * (2 * lens + 0.008), -lens + 0.001, z + 0.003),
-            (0.0015, 0.0012),
-            "plastic",
-            frame,
+            (hinge_x, lens * 0.35 - k * 0.004, z - ft / 2 - 0.0012),
+            (-sign * lens * 0.5, lens * 0.15 - k * 0.006, z - ft / 2 - 0.0012),
+            (0.0017, 0.001),
+            *look,
+            **ghost,
         )
-    d.box("bridge", (0.006, 0.0015, 0.0015), (0, lens * 0.5, z), "plastic", frame)
+    d.box("bridge", (bh + fw * 0.4, 0.002, ft / 2), (0, lens * 0.45, z), *look, **ghost)
     return Traits((color,), material, "ellipsoid")
 
 

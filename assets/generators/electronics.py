@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import dataclasses
 import math
 
 from ..design import Design, Traits
@@ -342,21 +341,6 @@ def presenter_clicker(d: Design) -> Traits:
     return Traits((color,), "plastic", "elongated")
 
 
-def _turn_parts(d: Design, yaw: float) -> None:
-    """Turn every part built so far by ``yaw`` about the vertical axis through the origin
-    (to lay a long object across the close-up's view)."""
-    c, s = math.cos(yaw), math.sin(yaw)
-    q = axis_angle_quat((0, 0, 1), yaw)
-    d.parts = [
-        dataclasses.replace(
-            p,
-            pos=(p.pos[0] * c - p.pos[1] * s, p.pos[0] * s + p.pos[1] * c, p.pos[2]),
-            quat=tuple(float(v) for v in quat_mul(q, p.quat)),
-        )
-        for p in d.parts
-    ]
-
-
 def _arrowhead(
     d: Design, name: str, x: float, y: float, z: float, size: float, point: int, ink: str
 ) -> None:
@@ -422,7 +406,6 @@ def presenter_clicker_3(d: Design) -> Traits:
         visual_only=True,
     )
     d.slab("blank_key", (0.0035, w * 0.2, 0.0006), t, "rubber", keys, xy=(-lx * 0.24, 0))
-    _turn_parts(d, math.radians(d.uniform(55.0, 70.0)))  # the nose to the lower left
     return Traits((color,), "plastic", "elongated")
 
 
@@ -715,8 +698,9 @@ def mini_sculpture_2(d: Design) -> Traits:
 
 @revised("mini_sculpture", 3)
 def mini_sculpture_3(d: Design) -> Traits:
-    """Revision 3: the ring (read as a finger ring) becomes a standing figure with its arms
-    raised; the bust and the other kinds are as in revision 2."""
+    """Revision 3: always a statue of a person, a marble or bronze bust on a round socle or
+    a standing figure of human proportions (the abstract kinds read as a cairn or a ring,
+    and the ellipsoid figure with a knob head as a joystick)."""
     return _sculpture_3(d)
 
 
@@ -814,85 +798,117 @@ def _sculpture(d: Design, fifth: str) -> Traits:
 
 
 def _sculpture_3(d: Design) -> Traits:
-    """``_sculpture`` with a bust, and a standing figure with raised arms for the ring."""
-    material, color, fill, plinth, pw, ph = _plinth(d)
+    """A small statue of a person on a plinth: a marble or bronze bust (chest, shoulders,
+    neck, a head with hair, ears and a nose) on a round socle, or a standing figure of
+    human proportions (legs, hips, torso, shoulders, arms, head)."""
+    bust = d.rng.random() < 0.5
+    material, color = d.choice(
+        [
+            ("stone", "white"),
+            ("stone", "white"),
+            ("ceramic", "white"),
+            ("stone", "gray"),
+            ("metal", "golden"),
+            ("metal", "brown"),
+            ("stone", "black"),
+        ][: 4 if bust else 7]
+    )
+    fill = 0.3 if material == "metal" else 1.0
+    plinth_mat, plinth = d.choice(
+        [
+            m
+            for m in (("wood", "black"), ("stone", "black"), ("wood", "brown"), ("stone", "gray"))
+            if m[1] != color
+        ]
+    )
     look = (material, color)
-    kind = d.choice(["figure", "cairn", "twist", "raised", "bust"])
-    if kind == "figure":
-        rz, rh = d.uniform(0.028, 0.038), d.uniform(0.009, 0.012)
-        d.ellipsoid("torso", (rz * 0.42, rz * 0.3, rz), (0, 0, ph + rz), *look, solid_fraction=fill)
-        d.upright("neck", rh * 0.45, rh * 0.6, ph + 2 * rz - 0.002, *look, solid_fraction=fill)
-        d.sphere("head", rh, (0, 0, ph + 2 * rz + rh * 0.5), *look, solid_fraction=fill)
-        shape = "irregular"
-    elif kind == "cairn":
-        z, r = ph, pw * d.uniform(0.42, 0.5)
-        count = d.choice([3, 4, 5])
-        k = 0
-        while k < count or (z < 0.064 and k < 7):  # tall enough to read as a cairn
-            rz = r * d.uniform(0.4, 0.5)
+    k = d.uniform(0.95, 1.15)
+    yaw = d.uniform(0.4, 0.65)  # facing the viewer in front, to the right
+    cos, sin = math.cos(yaw), math.sin(yaw)
+    kw = dict(solid_fraction=fill, quat=axis_angle_quat((0, 0, 1), yaw))
+
+    def at(x: float, y: float, z: float) -> tuple[float, float, float]:
+        return (x * cos - y * sin, x * sin + y * cos, z)
+
+    if bust:  # a bust on a round plinth and socle
+        pr, ph = 0.023 * k, 0.012 * k
+        d.upright("plinth", pr, ph, 0.0, plinth_mat, plinth)
+        sr, sh = 0.012 * k, 0.009 * k
+        d.upright("socle", sr, sh, ph, *look, solid_fraction=fill)
+        base = ph + sh
+        chest = (0, 0, base + 0.012 * k)
+        d.ellipsoid("chest", (0.011 * k, 0.028 * k, 0.017 * k), chest, *look, **kw)
+        for j, side in enumerate((-1, 1)):
             d.ellipsoid(
-                f"pebble_{k}", (r, r * 0.85, rz), (0, 0, z + rz), *look, solid_fraction=fill
-            )
-            z, r = z + 2 * rz * 0.92, r * d.uniform(0.72, 0.85)
-            k += 1
-        shape = "irregular"
-    elif kind == "twist":
-        side, slices = pw * d.uniform(0.28, 0.36), d.choice([6, 7, 8, 9])
-        th, turn = d.uniform(0.008, 0.011), d.uniform(0.12, 0.2)
-        for k in range(slices):
-            half = (side * (1 - 0.04 * k), side * (1 - 0.04 * k), th / 2)
-            d.slab(f"slice_{k}", half, ph + k * th, *look, yaw=k * turn, solid_fraction=fill)
-        shape = "elongated"
-    elif kind == "raised":  # a figure standing on its legs, both arms raised in a V
-        k = d.uniform(0.9, 1.15)
-        hip, look_kw = ph + 0.034 * k, dict(solid_fraction=fill)
-        for j, sign in enumerate((-1, 1)):
-            foot = (0.002 * k, sign * 0.006 * k, ph + 0.003 * k)
-            knee = (0.0045 * k, sign * 0.0055 * k, ph + 0.018 * k)
-            d.segment(f"shin_{j}", "capsule", foot, knee, 0.0036 * k, *look, **look_kw)
-            d.segment(
-                f"leg_{j}",
-                "capsule",
-                knee,
-                (0, sign * 0.0045 * k, hip),
-                0.0042 * k,
+                f"shoulder_{j}",
+                (0.0085 * k, 0.0095 * k, 0.0065 * k),
+                at(-0.001 * k, side * 0.0185 * k, chest[2] + 0.0085 * k),
                 *look,
-                **look_kw,
+                **kw,
             )
+        top = chest[2] + 0.016 * k
+        d.upright("neck", 0.0058 * k, 0.011 * k, top - 0.003 * k, *look, solid_fraction=fill)
+        head = at(0.001 * k, 0, top + 0.017 * k)
+        d.ellipsoid("head", (0.0115 * k, 0.0094 * k, 0.0132 * k), head, *look, **kw)
+        hair = at(-0.0025 * k, 0, head[2] + 0.0035 * k)
+        d.ellipsoid("hair", (0.0115 * k, 0.0098 * k, 0.0112 * k), hair, *look, **kw)
         d.ellipsoid(
-            "torso", (0.0065 * k, 0.0105 * k, 0.0135 * k), (0, 0, hip + 0.01 * k), *look, **look_kw
-        )
-        shoulder = hip + 0.019 * k
-        d.upright("neck", 0.0028 * k, 0.005 * k, shoulder - 0.001 * k, *look, **look_kw)
-        d.sphere("head", 0.0062 * k, (0.0005 * k, 0, shoulder + 0.009 * k), *look, **look_kw)
-        spread = d.uniform(0.3, 0.6)
-        for j, sign in enumerate((-1, 1)):
-            root = (0, sign * 0.0085 * k, shoulder - 0.0015 * k)
-            reach = 0.026 * k
-            hand = (
-                0.003 * k,
-                root[1] + sign * reach * math.sin(spread),
-                root[2] + reach * math.cos(spread),
-            )
-            d.segment(f"arm_{j}", "capsule", root, hand, 0.0027 * k, *look, **look_kw)
-        shape = "irregular"
-    else:  # a bust facing +x
-        k = d.uniform(0.9, 1.2)
-        d.ellipsoid(
-            "chest",
-            (0.011 * k, 0.028 * k, 0.015 * k),
-            (0, 0, ph + 0.014 * k),
+            "nose",
+            (0.003 * k, 0.0018 * k, 0.0038 * k),
+            at(0.0118 * k, 0, head[2] - 0.001 * k),
             *look,
-            solid_fraction=fill,
+            **kw,
         )
-        neck = ph + 0.025 * k
-        d.upright("neck", 0.0065 * k, 0.01 * k, neck, *look, solid_fraction=fill)
-        head = (0.0015 * k, 0, neck + 0.008 * k + 0.0145 * k)
-        d.ellipsoid("head", (0.012 * k, 0.0105 * k, 0.0145 * k), head, *look, solid_fraction=fill)
-        nose = (head[0] + 0.0115 * k, 0, head[2] - 0.001 * k)
-        d.ellipsoid("nose", (0.003 * k, 0.002 * k, 0.004 * k), nose, *look, solid_fraction=fill)
-        shape = "irregular"
-    return Traits((color, plinth), material, shape)
+        for j, side in enumerate((-1, 1)):
+            d.ellipsoid(
+                f"ear_{j}",
+                (0.0025 * k, 0.0015 * k, 0.0038 * k),
+                at(0, side * 0.0092 * k, head[2]),
+                *look,
+                **kw,
+            )
+        return Traits((color, plinth), material, "irregular")
+    # a standing figure facing +x: about seven and a half heads tall
+    hgt = 0.082 * k
+    pw, ph = 0.036 * k, 0.011 * k
+    if d.rng.random() < 0.5:
+        d.slab("plinth", (pw / 2, pw / 2, ph / 2), 0.0, plinth_mat, plinth, yaw=yaw)
+    else:
+        d.upright("plinth", pw / 2, ph, 0.0, plinth_mat, plinth)
+    z = lambda f: ph + f * hgt  # noqa: E731  height on the figure
+    stance = d.uniform(0.003, 0.0045) * k
+    for j, side in enumerate((-1, 1)):
+        y = side * 0.0042 * k
+        foot = at(0.0018 * k, y + side * stance * 0.3, ph + 0.0016 * k)
+        d.add(f"foot_{j}", "box", (0.0042 * k, 0.0022 * k, 0.0016 * k), foot, *look, **kw)
+        ankle = at(0, y + side * stance * 0.3, z(0.04))
+        knee = at(0.0008 * k, y + side * stance * 0.15, z(0.26))
+        hip = at(0, y, z(0.47))
+        d.segment(f"shin_{j}", "capsule", ankle, knee, 0.0031 * k, *look, solid_fraction=fill)
+        d.segment(f"thigh_{j}", "capsule", knee, hip, 0.0041 * k, *look, solid_fraction=fill)
+    d.ellipsoid("hips", (0.0058 * k, 0.0088 * k, 0.0065 * k), (0, 0, z(0.5)), *look, **kw)
+    limb = dict(solid_fraction=fill)
+    d.ellipsoid("torso", (0.0062 * k, 0.0098 * k, 0.0145 * k), (0, 0, z(0.64)), *look, **kw)
+    shoulder_z = z(0.79)
+    pose = d.choice(["down", "hip", "raised"])
+    for j, side in enumerate((-1, 1)):
+        root = at(0, side * 0.0105 * k, shoulder_z)
+        d.sphere(f"shoulder_{j}", 0.0032 * k, root, *look, **limb)
+        if pose == "hip" and j == 1:  # a hand on the hip, the elbow out
+            elbow = at(-0.002 * k, side * 0.019 * k, z(0.63))
+            hand = at(0.002 * k, side * 0.009 * k, z(0.5))
+        elif pose == "raised" and j == 1:  # an arm raised high
+            elbow = at(0.002 * k, side * 0.014 * k, shoulder_z + 0.011 * k)
+            hand = at(0.004 * k, side * 0.015 * k, shoulder_z + 0.024 * k)
+        else:  # hanging at the side
+            elbow = at(0.0005 * k, side * 0.0125 * k, z(0.61))
+            hand = at(0.002 * k, side * 0.012 * k, z(0.45))
+        d.segment(f"upper_arm_{j}", "capsule", root, elbow, 0.0027 * k, *look, **limb)
+        d.segment(f"forearm_{j}", "capsule", elbow, hand, 0.0023 * k, *look, **limb)
+    d.upright("neck", 0.0025 * k, 0.006 * k, shoulder_z, *look, **limb)
+    head = at(0.0006 * k, 0, shoulder_z + 0.0098 * k)
+    d.ellipsoid("head", (0.0056 * k, 0.0049 * k, 0.0062 * k), head, *look, **kw)
+    return Traits((color, plinth), material, "irregular")
 
 
 @generator("phone_stand", size=(0.07, 0.13), synonyms=("phone stand", "phone holder", "phone dock"))
@@ -1015,7 +1031,6 @@ def phone_stand_3(d: Design) -> Traits:
             quat=axis_angle_quat((0, 1, 0), -lean),
             visual_only=True,
         )
-    _turn_parts(d, math.radians(d.uniform(-25.0, -15.0)))  # its side towards the close-up
     return Traits((color,), material, "irregular")
 
 

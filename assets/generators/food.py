@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 
 from ..design import Design, Traits
-from ..parts import X_TO_Z, axis_angle_quat, quat_mul
+from ..parts import X_TO_Z, axis_angle_quat
 from ..textures import Texture
 from .registry import generator, revised
 
@@ -242,7 +242,7 @@ def beverage_bottle_3(d: Design) -> Traits:
     d.upright("base_ring", r * 0.93, 0.004, 0.0, "plastic", liquid, visual_only=True)
     label_h = body_h * 0.42
     label_z = body_h * 0.4
-    quat = quat_mul(axis_angle_quat((0, 0, 1), 0.5), X_TO_Z)  # the word towards the viewer
+    quat = X_TO_Z  # the word towards +x (a turn about z would widen its bounds)
     d.add(
         "label",
         "cylinder",

@@ -596,6 +596,114 @@ def biscuit(d: Design) -> Traits:
     return Traits((color,), "organic", "disk")
 
 
+def _chip_cookie(
+    d: Design, name: str, r: float, t: float, z0: float, color: str, chip: str, xy=(0.0, 0.0)
+) -> float:
+    """A round baked cookie on z0: a low slab under a domed, cracked top studded with
+    chocolate chips; returns the height of its dome's crown."""
+    dome = t * 0.5
+    d.upright(name, r, t - dome * 0.4, z0, "organic", color, xy=xy, solid_fraction=0.6)
+    top = z0 + t - dome * 0.4
+    d.ellipsoid(f"{name}_dome", (r * 0.97, r * 0.97, dome), (xy[0], xy[1], top), "organic", color)
+    crack = "beige" if color == "golden" else "golden"  # paler dough in the cracks
+    for k in range(3):  # pale cracks across the crown
+        a = d.uniform(0, math.pi) + k * math.pi / 3
+        rho = r * d.uniform(0.15, 0.45)
+        x, y = rho * math.cos(a + 1.3), rho * math.sin(a + 1.3)
+        zz = top + dome * math.sqrt(max(0.0, 1 - (rho / r) ** 2)) - 0.0002
+        d.box(
+            f"{name}_crack_{k}",
+            (r * d.uniform(0.3, 0.45), 0.0009, 0.0005),
+            (xy[0] + x, xy[1] + y, zz),
+            "organic",
+            crack,
+            yaw=a,
+            visual_only=True,
+        )
+    n = int(d.rng.integers(11, 15))
+    turn = d.uniform(0, 2 * math.pi)
+    for k in range(n):  # scattered evenly over the top (a sunflower spiral)
+        a = turn + k * 2.39996 + d.uniform(-0.2, 0.2)
+        rho = r * 0.84 * math.sqrt((k + 0.5) / n)
+        zz = top + dome * math.sqrt(max(0.0, 1 - (rho / r) ** 2))
+        d.ellipsoid(
+            f"{name}_chip_{k}",
+            (0.0034, 0.003, 0.0022),
+            (xy[0] + rho * math.cos(a), xy[1] + rho * math.sin(a), zz),
+            "organic",
+            chip,
+            visual_only=True,
+        )
+    return top + dome
+
+
+@revised("biscuit", 3)
+def biscuit_3(d: Design) -> Traits:
+    """Revision 3: a biscuit people call a cookie at a glance: a round chocolate-chip
+    cookie (a domed, cracked top studded with dark chips), a
+    rectangular butter biscuit with a scalloped edge and docking holes, or a packet printed
+    COOKIES with a cookie pictured (the first's smooth sandwich discs read as macarons)."""
+    kind = d.choice(["cookie", "cookie", "cookie", "butter", "pack"])
+    if kind == "pack":
+        wrapper = d.choice(["red", "blue", "yellow", "orange", "brown", "purple"])
+        ink = "white" if wrapper in ("red", "blue", "brown", "purple") else "brown"
+        ly, lx, hz = d.uniform(0.13, 0.16), d.uniform(0.055, 0.065), d.uniform(0.032, 0.04)
+        d.box("pack", (lx / 2, ly / 2, hz / 2), (0, 0, hz / 2), "paper", wrapper)
+        for k, sign in enumerate((-1, 1)):  # the sealed crimped ends
+            d.box(
+                f"crimp_{k}",
+                (lx / 2 - 0.003, 0.005, 0.0012),
+                (0, sign * (ly / 2 + 0.005), hz / 2),
+                "plastic",
+                wrapper,
+            )
+        d.add(
+            "pack_print",
+            "box",
+            (ly * 0.42, lx * 0.44, 0.0004),
+            (0.0, 0.0, hz + 0.0004),
+            "paper",
+            wrapper,
+            quat=axis_angle_quat((0, 0, 1), math.pi / 2),
+            visual_only=True,
+            texture=Texture("print_cookies", (ink, "golden"), "cookie"),
+        )
+        return Traits((wrapper,), "paper", "cuboid")
+    if kind == "butter":
+        color = d.choice(["golden", "golden", "beige"])
+        lx, ly, t = d.uniform(0.04, 0.046), d.uniform(0.058, 0.066), d.uniform(0.0085, 0.0095)
+        s = 0.0035  # the scallops' radius
+        d.slab("biscuit", (lx / 2 - s / 2, ly / 2 - s / 2, t / 2), 0.0, "organic", color)
+        k = 0
+        for along, half, other, axis in ((ly, ly / 2, lx / 2, "y"), (lx, lx / 2, ly / 2, "x")):
+            n = int(round(along / (2.2 * s)))
+            for j in range(n):
+                u = -half + s + (along - 2 * s) * j / (n - 1)
+                for sign in (-1, 1):
+                    xy = (sign * (other - s), u) if axis == "y" else (u, sign * (other - s))
+                    d.upright(f"scallop_{k}", s, t, 0.0, "organic", color, xy=xy, visual_only=True)
+                    k += 1
+        for i in range(3):  # docking holes in a grid
+            for j in range(4):
+                x, y = (i - 1) * lx * 0.26, (j - 1.5) * ly * 0.22
+                d.upright(
+                    f"dock_{i}{j}",
+                    0.0013,
+                    0.0004,
+                    t,
+                    "organic",
+                    "brown",
+                    xy=(x, y),
+                    visual_only=True,
+                )
+        return Traits((color,), "organic", "cuboid")
+    color = d.choice(["golden", "golden", "beige", "brown"])
+    chip = "white" if color == "brown" else d.choice(["brown", "black"])
+    r = d.uniform(0.03, 0.036)
+    _chip_cookie(d, "cookie", r, d.uniform(0.0075, 0.009), 0.0, color, chip)
+    return Traits((color,), "organic", "disk")
+
+
 @generator("potato_chips", size=(0.15, 0.26), synonyms=("potato chips", "chips", "crisps"))
 def potato_chips(d: Design) -> Traits:
     color = d.choice(WRAPPERS[:-1])
@@ -834,103 +942,68 @@ def cheese_sticks_3(d: Design) -> Traits:
 
 @revised("bread", 3)
 def bread_3(d: Design) -> Traits:
-    """Revision 3: a sliced loaf showing its crumb, with slices cut off lying in front, or
-    a long baguette with raised pale slashes (the oval loaves read as potatoes and kiwis)."""
-    crust = d.choice(["brown", "golden", "golden"])
-    crumb = d.choice(["beige", "white"])
+    """Revision 3: a golden-brown sandwich loaf, its domed top overhanging the tin-baked
+    sides, cut at the front to show a porous crumb, two slices cut off standing a little
+    apart; or a long baguette with pale diagonal slashes (the oval loaves read as potatoes
+    and kiwis; a cut slice lying flat before the loaf read as a slipper's sole)."""
+    top = d.choice(["brown", "brown", "golden"])
+    crumb = d.choice(["beige", "beige", "white"])
+    pores = Texture("pores")
     if d.rng.random() < 0.65:
-        lx, ly, hz = d.uniform(0.1, 0.13), d.uniform(0.06, 0.068), d.uniform(0.045, 0.055)
-        d.box(
-            "body",
-            (lx / 2, ly / 2, hz / 2),
-            (-0.02, 0, hz / 2),
-            "organic",
-            crust,
-            solid_fraction=0.3,
-        )
-        dome = ly / 2
-        d.add(
-            "crown",
-            "ellipsoid",
-            (lx / 2, dome, dome * 0.6),
-            (-0.02, 0, hz),
-            "organic",
-            crust,
-            solid_fraction=0.3,
-        )
-        face = lx / 2 - 0.02 + 0.0008  # the cut end: crumb inside a rim of crust
-        d.box(
-            "crumb",
-            (0.0008, ly / 2 - 0.004, hz / 2 - 0.002),
-            (face, 0, hz / 2 + 0.002),
-            "organic",
-            crumb,
-            visual_only=True,
-        )
-        d.add(
-            "crumb_dome",
-            "ellipsoid",
-            (0.0009, dome - 0.004, dome * 0.6 - 0.004),
-            (face, 0, hz),
-            "organic",
-            crumb,
-            visual_only=True,
-        )
-        slices = d.choice([1, 2, 2])
-        t = d.uniform(0.011, 0.014)
-        for k in range(slices):  # lying flat in front of the cut end, a little fanned
-            cx = face + 0.004 + hz / 2 + k * 0.012
-            cy = -0.006 + k * 0.01
-            z0 = k * t * 0.95
-            yaw = d.uniform(-0.15, 0.15)
-            d.box(
-                f"slice_{k}",
-                (hz / 2, ly / 2, t / 2),
-                (cx, cy, z0 + t / 2),
+        side = "golden"
+        lx, ly, hz = d.uniform(0.1, 0.12), d.uniform(0.06, 0.064), d.uniform(0.042, 0.048)
+        a = ly / 2 * 1.06  # the domed top: an arc of a circle, overhanging the sides
+        dome = ly / 2 * d.uniform(0.62, 0.72)
+        zc = hz + dome - a
+        t, gap = d.uniform(0.011, 0.013), d.uniform(0.0025, 0.0045)
+        x0, x1 = -lx / 2, lx / 2 - 2 * (t + gap)  # the loaf from x0 to its cut end x1
+
+        def piece(name: str, lo: float, hi: float, **kw) -> None:
+            mid, half = (lo + hi) / 2, (hi - lo) / 2
+            d.box(name, (half, ly / 2, hz / 2), (mid, 0, hz / 2), "organic", side, **kw)
+            d.add(
+                f"{name}_top",
+                "cylinder",
+                (a, half),
+                (mid, 0, zc),
                 "organic",
-                crust,
-                yaw=yaw,
+                top,
                 solid_fraction=0.3,
             )
-            off = (cx + hz / 2 * math.cos(yaw), cy + hz / 2 * math.sin(yaw), z0 + t / 2)
-            d.add(
-                f"slice_top_{k}",
-                "cylinder",
-                (dome, t / 2),
-                off,
-                "organic",
-                crust,
-                quat=quat_mul(_yaw(yaw), X_TO_Z),
-                solid_fraction=0.3,
-            )
+            face = hi + 0.0005  # the cut face: a porous crumb inside a rim of crust
             d.box(
-                f"slice_crumb_{k}",
-                (hz / 2 - 0.002, ly / 2 - 0.003, 0.0006),
-                (cx, cy, z0 + t + 0.0006),
+                f"{name}_crumb",
+                (0.0005, ly / 2 - 0.0035, hz / 2 - 0.002),
+                (face, 0, hz / 2 + 0.001),
                 "organic",
                 crumb,
-                yaw=yaw,
                 visual_only=True,
+                texture=pores,
             )
             d.add(
-                f"slice_crumb_top_{k}",
+                f"{name}_crumb_top",
                 "cylinder",
-                (dome - 0.003, 0.0006),
-                (off[0], off[1], z0 + t + 0.0006),
+                (a - 0.004, 0.0005),
+                (face - 0.0002, 0, zc),
                 "organic",
                 crumb,
-                quat=quat_mul(_yaw(yaw), X_TO_Z),
                 visual_only=True,
+                texture=pores,
             )
-        return Traits((crust, crumb), "organic", "cuboid")
+
+        piece("loaf", x0, x1, solid_fraction=0.3)
+        for k in range(2):
+            lo = x1 + gap + k * (t + gap)
+            piece(f"slice_{k}", lo, lo + t, solid_fraction=0.3)
+        return Traits((top, side) if top != side else (top,), "organic", "cuboid")
     crumb = "beige"
     a, b = d.uniform(0.1, 0.115), d.uniform(0.022, 0.027)
     c = b
-    d.rod("baguette", b, 2 * a, (0, 0, c), "organic", crust, capsule=True, solid_fraction=0.3)
+    d.rod("baguette", b, 2 * a, (0, 0, c), "organic", top, capsule=True, solid_fraction=0.3)
     slashes = int(d.rng.integers(4, 6))
     for k in range(slashes):
         x = (k - (slashes - 1) / 2) * a * 1.55 / slashes
-        radii = (a * 0.75 / slashes, b * 0.32, 0.0035)
+        radii = (a * 1.05 / slashes, b * 0.26, 0.0035)
         d.add(
             f"slash_{k}",
             "ellipsoid",
@@ -938,10 +1011,10 @@ def bread_3(d: Design) -> Traits:
             (x, 0, 2 * c - 0.0016),
             "organic",
             crumb,
-            quat=_yaw(0.55),
+            quat=_yaw(0.35),
             visual_only=True,
         )
-    return Traits((crust,), "organic", "elongated")
+    return Traits((top,), "organic", "elongated")
 
 
 @revised("potato", 3)

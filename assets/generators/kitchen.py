@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 
 from ..design import Design, Traits
-from ..parts import X_TO_Z, axis_angle_quat, quat_mul
+from ..parts import X_TO_Z
 from ..textures import Texture
 from .registry import generator, revised
 
@@ -90,7 +90,7 @@ def spice_jar_3(d: Design) -> Traits:
     d.upright("spice", r - 0.0015, jar * 0.85, 0.0025, "organic", content, visual_only=True)
     d.upright("neck", r * 0.9, 0.004, jar, "glass", "transparent")
     word = Texture(d.choice(SPICE_WORDS[content]), (ink,))
-    quat = quat_mul(axis_angle_quat((0, 0, 1), 0.5), X_TO_Z)  # the word towards the viewer
+    quat = X_TO_Z  # the word towards +x (a turn about z would widen its bounds)
     label_h = jar * 0.5
     d.add(
         "label",

@@ -2,11 +2,10 @@
 
 from __future__ import annotations
 
-import dataclasses
 import math
 
 from ..design import Design, Traits
-from ..parts import axis_angle_quat, quat_mul
+from ..parts import axis_angle_quat
 from ..textures import Texture
 from .kitchen import CERAMIC_COLORS
 from .registry import generator, revised
@@ -294,37 +293,23 @@ def wire_cutters(d: Design) -> Traits:
     return Traits((grip, "silver"), "metal", "irregular")
 
 
-def _turn_parts(d: Design, yaw: float) -> None:
-    """Turn every part built so far by ``yaw`` about the vertical axis through the origin
-    (to lay a long tool across the close-up's view)."""
-    c, s = math.cos(yaw), math.sin(yaw)
-    q = axis_angle_quat((0, 0, 1), yaw)
-    d.parts = [
-        dataclasses.replace(
-            p,
-            pos=(p.pos[0] * c - p.pos[1] * s, p.pos[0] * s + p.pos[1] * c, p.pos[2]),
-            quat=tuple(float(v) for v in quat_mul(q, p.quat)),
-        )
-        for p in d.parts
-    ]
-
-
 @revised("wire_cutters", 3)
 def wire_cutters_3(d: Design) -> Traits:
-    """Revision 3: diagonal side cutters lying a little open on their return spring: a
-    short, fat, dark head of two jaws, each with a straight cutting edge and a broad polished
-    bevel ground along it, parted by a V gap that widens to the blunt tip; a round boss with
-    a rivet; a bright V spring between the handles; thick dipped grips, two-tone (the first,
-    long straight jaws, read as pliers or a can opener; a closed, pointed head too small to
-    see read as pliers; a wire held in the jaws read as wire strippers)."""
+    """Revision 3: diagonal side cutters lying a little open on their return spring, laid
+    across the view: a short, wide, pointed head (as wide as it is long) of two wedge
+    jaws tapering to a point, opened like a beak so that a V gap runs from the rivet to the
+    tip between their two straight, polished cutting edges; a round boss with a rivet; a
+    bright V spring between the handles; thick dipped grips, two-tone (the first, long
+    straight jaws, read as pliers or a can opener; a small dark head, its jaws almost
+    shut, read as pliers again; a wire held in the jaws read as wire strippers)."""
     grip = d.choice(["red", "red", "yellow", "red", "orange", "blue"])
     tip = d.choice(["yellow", "black"]) if grip == "red" else d.choice(["red", "black"])
     metal = d.choice(["black", "black", "gray"])
-    shine = "white"  # the ground bevels
-    jaw_len, head_w = d.uniform(0.036, 0.04), d.uniform(0.013, 0.015)
-    handle_len, closed = d.uniform(0.09, 0.105), d.uniform(0.012, 0.015)
-    open_a = math.radians(d.uniform(5.0, 7.0))  # each half turned open by the spring
-    thick = d.uniform(0.012, 0.014)
+    shine = "silver"  # the ground cutting edges
+    jaw_len, jaw_w = d.uniform(0.027, 0.031), d.uniform(0.0115, 0.0128)
+    handle_len, closed = d.uniform(0.084, 0.094), d.uniform(0.012, 0.015)
+    open_a = math.radians(d.uniform(9.0, 10.5))  # each half turned open by the spring
+    thick = d.uniform(0.011, 0.013)
     z = thick / 2
     r = d.uniform(0.0062, 0.007)  # the dipped grips' radius
 
@@ -332,44 +317,38 @@ def wire_cutters_3(d: Design) -> Traits:
         c, s = math.cos(sign * open_a), math.sin(sign * open_a)
         return (x * c - y * s, x * s + y * c)
 
-    d.upright("boss", head_w * 1.05, thick, 0.0, "metal", metal)
-    d.upright("rivet", 0.004, thick + 0.0012, 0.0, "metal", "silver")
+    d.upright("boss", jaw_w * 1.08, thick, 0.0, "metal", metal, xy=(-0.003, 0.0))
+    d.upright("rivet", 0.0042, thick + 0.0012, 0.0, "metal", "silver", xy=(-0.003, 0.0))
     for k, sign in enumerate((-1, 1)):
         yaw = sign * open_a
-        # the jaw: a straight strip on the cutting edge and a rounded cheek outside it
-        strip = 0.0032
-        cx, cy = turn(jaw_len * 0.4, sign * strip, sign)
-        d.box(f"jaw_{k}", (jaw_len * 0.4, strip, z), (cx, cy, z), "metal", metal, yaw=yaw)
-        p0 = turn(-0.003, sign * (head_w * 0.95), sign)
-        p1 = turn(jaw_len, sign * 0.0012, sign)
+        # the jaw: a broad root, a strip along the straight cutting edge to the point (its
+        # inner side the cutting edge) and a fat rounded cheek outside it: half an almond
+        for j, (length, width) in enumerate(((0.3, 0.85), (0.82, 0.2))):
+            seg, w = jaw_len * length, jaw_w * width
+            cx, cy = turn(seg / 2, sign * w / 2, sign)
+            d.box(f"jaw_{k}_{j}", (seg / 2, w / 2, z), (cx, cy, z), "metal", metal, yaw=yaw)
+        p0 = turn(-0.001, sign * jaw_w * 0.78, sign)
+        p1 = turn(jaw_len * 1.02, sign * jaw_w * 0.03, sign)
         d.segment(
-            f"cheek_{k}",
-            "ellipsoid",
-            (*p0, z),
-            (*p1, z),
-            (head_w * 0.5, z * 0.98),
-            "metal",
-            metal,
+            f"cheek_{k}", "ellipsoid", (*p0, z), (*p1, z), (jaw_w * 0.46, z * 0.96), "metal", metal
         )
-        # the polished bevel sloping down to the edge
-        bx, by = turn(jaw_len * 0.46, sign * 0.0026, sign)
-        quat = quat_mul(axis_angle_quat((0, 0, 1), yaw), axis_angle_quat((1, 0, 0), sign * 0.2))
-        d.add(
+        # the polished bevel ground along the cutting edge, on top
+        bx, by = turn(jaw_len * 0.45, sign * 0.0012, sign)
+        d.box(
             f"bevel_{k}",
-            "box",
-            (jaw_len * 0.36, 0.0028, 0.0006),
-            (bx, by, thick - 0.0002),
+            (jaw_len * 0.38, 0.0012, 0.0004),
+            (bx, by, thick + 0.0002),
             "metal",
             shine,
-            quat=quat,
+            yaw=yaw,
         )
         # the handle of this half lies on the other side of the pivot
-        knee = turn(-0.022, -sign * 0.0075, sign)
+        knee = turn(-0.024, -sign * 0.0075, sign)
         end = turn(-handle_len, -sign * closed, sign)
         d.segment(
             f"shank_{k}",
             "box",
-            (*turn(-0.004, -sign * 0.004, sign), z),
+            (*turn(-0.006, -sign * 0.004, sign), z),
             (*knee, z * 0.9),
             (0.0045, z * 0.6),
             "metal",
@@ -379,19 +358,17 @@ def wire_cutters_3(d: Design) -> Traits:
         d.segment(f"grip_{k}", "capsule", (*knee, r), (*mid, r), r, "rubber", grip)
         d.segment(f"grip_end_{k}", "capsule", (*mid, r), (*end, r), r * 1.08, "rubber", tip)
         # the return spring: a bright wire V from a coil by the pivot to each handle
-        f = 0.42
-        hand = tuple(a + f * (b - a) for a, b in zip(knee, end, strict=True))
+        hand = tuple(a + 0.42 * (b - a) for a, b in zip(knee, end, strict=True))
         d.segment(
             f"spring_{k}",
             "box",
-            (-0.024, 0.0, r * 1.5),
+            (-0.026, 0.0, r * 1.5),
             (hand[0], hand[1] * 0.8, r * 1.5),
             (0.0011, 0.0011),
             "metal",
             "silver",
         )
-    d.upright("spring_coil", 0.003, 0.003, r * 1.5 - 0.0015, "metal", "silver", xy=(-0.024, 0))
-    _turn_parts(d, math.radians(d.uniform(55.0, 70.0)))  # the head to the lower left
+    d.upright("spring_coil", 0.003, 0.003, r * 1.5 - 0.0015, "metal", "silver", xy=(-0.026, 0))
     return Traits((grip, metal), "metal", "irregular")
 
 

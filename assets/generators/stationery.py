@@ -322,6 +322,118 @@ def correction_tape(d: Design) -> Traits:
     return Traits((color, "white"), "plastic", "flat")
 
 
+@revised("correction_tape", 3)
+def correction_tape_3(d: Design) -> Traits:
+    """Revision 3: a flat, mouse-shaped dispenser lying on its side, the big white tape roll
+    and the smaller take-up reel showing on its top, the white tape running along to the
+    applicator tip at the tapered front (a round reel case with a stubby nose read as a
+    whistle)."""
+    color = d.choice(["blue", "pink", "purple", "green", "orange", "blue"])
+    hub = d.choice(["white", "gray", "black"])
+    length, w, h = d.uniform(0.085, 0.095), d.uniform(0.034, 0.04), d.uniform(0.014, 0.017)
+    R = w / 2
+    xr = -length / 2 + R  # the rear reel's centre
+    kw = dict(solid_fraction=0.5)
+    # the shell: a round back, a body tapering to a narrow nose
+    d.upright("shell_back", R, h, 0.0, "plastic", color, xy=(xr, 0), **kw)
+    mid = length * 0.2
+    d.slab(
+        "shell",
+        (mid / 2 + R / 2, R * 0.92, h / 2),
+        0.0,
+        "plastic",
+        color,
+        xy=(xr + mid / 2, 0),
+        **kw,
+    )
+    nose_x0 = xr + mid + R * 0.5
+    nose_x1 = length / 2 - 0.006
+    for k, sign in enumerate((-1, 1)):
+        p0 = (nose_x0 - 0.003, sign * (R * 0.92 - 0.003), 0.0)
+        p1 = (nose_x1, sign * 0.0035, 0.0)
+        half_w = 0.003
+        dx, dy = p1[0] - p0[0], p1[1] - p0[1]
+        ln = math.hypot(dx, dy)
+        d.box(
+            f"nose_{k}",
+            (ln / 2, half_w, h * 0.42),
+            ((p0[0] + p1[0]) / 2, (p0[1] + p1[1]) / 2, h * 0.42),
+            "plastic",
+            color,
+            yaw=math.atan2(dy, dx),
+            **kw,
+        )
+    d.slab(
+        "nose",
+        ((nose_x1 - nose_x0) / 2, 0.005, h * 0.42),
+        0.0,
+        "plastic",
+        color,
+        xy=((nose_x0 + nose_x1) / 2, 0),
+        **kw,
+    )
+    # the applicator tip, the white tape wrapped over it
+    d.slab(
+        "tip",
+        (0.003, 0.0045, h * 0.16),
+        h * 0.26,
+        "plastic",
+        "transparent",
+        xy=(nose_x1 + 0.002, 0),
+    )
+    d.box(
+        "tape_tip",
+        (0.0006, 0.0047, h * 0.17),
+        (nose_x1 + 0.0052, 0, h * 0.42),
+        "paper",
+        "white",
+        visual_only=True,
+    )
+    # the white tape roll standing proud of the shell, the take-up reel beside the tape
+    # and the tape running from the roll to the tip
+    roll, rh = R * 0.88, 0.004
+    d.upright("roll", roll, rh, h - 0.001, "paper", "white", xy=(xr, 0), visual_only=True)
+    d.upright(
+        "roll_core",
+        roll * 0.45,
+        rh + 0.0004,
+        h - 0.001,
+        "plastic",
+        hub,
+        xy=(xr, 0),
+        visual_only=True,
+    )
+    for j in range(3):
+        d.box(
+            f"spoke_{j}",
+            (roll * 0.4, 0.0008, 0.0004),
+            (xr, 0, h + rh - 0.0006),
+            "plastic",
+            color,
+            yaw=math.pi * j / 3,
+            visual_only=True,
+        )
+    xt, yt = xr + R + 0.01, -R * 0.42
+    d.upright("reel", 0.0065, 0.0012, h - 0.0004, "plastic", "gray", xy=(xt, yt), visual_only=True)
+    d.upright(
+        "reel_core", 0.0028, 0.0016, h - 0.0004, "plastic", hub, xy=(xt, yt), visual_only=True
+    )
+    run = ((xr + roll * 0.85, 0.0, h + rh * 0.5), (nose_x0, 0.0, h + 0.0004))
+    run += ((nose_x1, 0.0, h * 0.84 + 0.0004), (nose_x1 + 0.0058, 0.0, h * 0.6))
+    for k in range(3):
+        d.segment(
+            f"tape_run_{k}",
+            "box",
+            run[k],
+            run[k + 1],
+            (0.0026, 0.0003),
+            "paper",
+            "white",
+            visual_only=True,
+        )
+    return Traits((color, "white"), "plastic", "flat")
+
+
 @generator("sharpener", size=(0.02, 0.065), synonyms=("pencil sharpener", "sharpener"))
 def sharpener(d: Design) -> Traits:
     blade = d.choice(["silver", "gray"])
@@ -788,74 +900,75 @@ def sticky_notes(d: Design) -> Traits:
 
 @revised("sticky_notes", 3)
 def sticky_notes_3(d: Design) -> Traits:
-    """Revision 3: a thick, exactly square pad of bright sticky notes with no binding and
-    nothing written on it: either plain canary yellow (or one bright colour) with its sheets
-    showing as fine lines round the sides, or a neon pad in bands of colours; the top note's
-    free end lifts a little off its glued band and the note under it sits a little turned
-    (the first's scribbled lines and steep peeled sheet read as a notepad)."""
-    neon = ["yellow", "pink", "green", "orange", "blue"]
-    multi = d.rng.random() < 0.4
-    first = d.choice(["yellow", "yellow", "yellow", "pink", "orange", "green"])
-    side = d.uniform(0.064, 0.0695)  # square; a 0.08 m gripper still closes on it
-    thick = d.uniform(0.014, 0.02)
-    d.slab("pad", (side / 2, side / 2, thick / 2), 0.0, "paper", first)
+    """Revision 3: a square pad of canary-yellow (or bright orange or green) sticky notes,
+    its sheets showing as fine lines round its sides, the top note glued along its far
+    edge and curling up off the pad towards the viewer; often a second pad of another
+    colour under it, turned and offset so its corners peek out (the first's plain pastel
+    stacks read as napkins, its scribbles and steep peeled sheet as a notepad)."""
+    first = d.choice(["yellow", "yellow", "yellow", "yellow", "orange", "green"])
+    side = d.uniform(0.06, 0.066)  # square; a 0.08 m gripper still closes on it
+    thick = d.uniform(0.008, 0.011)
+    z0 = 0.0
     colors = [first]
-    if multi:  # bands of neon colours round the sides
-        bands = d.choice([4, 5])
-        for k in range(1, bands):
-            color = d.choice([c for c in neon if c != colors[-1]])
-            colors.append(color)
-            band = (side / 2 + 0.0002, side / 2 + 0.0002, thick / bands / 2)
-            d.slab(f"band_{k}", band, k * thick / bands, "paper", color, visual_only=True)
-    else:  # the sheets' edges
-        for k in range(1, 6):
-            z = thick * k / 6
-            for j, (hx, hy, x, y) in enumerate(
-                (
-                    (side / 2 + 0.0002, 0.00015, 0, side / 2),
-                    (0.00015, side / 2 + 0.0002, side / 2, 0),
-                )
-            ):
-                d.box(
-                    f"sheet_edge_{k}_{j}",
-                    (hx, hy, 0.00016),
-                    (x, y, z),
-                    "paper",
-                    "white",
-                    visual_only=True,
-                )
-    top = colors[-1]
-    under = colors[-2] if multi else first
-    d.box(
-        "turned_note",
-        (side / 2 - 0.0005, side / 2 - 0.0005, 0.0002),
-        (0.0012, -0.001, thick + 0.0002),
-        "paper",
-        under,
-        yaw=d.uniform(0.07, 0.12),
-        visual_only=True,
-    )
-    glue = side * 0.2  # the glued band along -x stays flat, the rest lifts a little
-    z = thick + 0.0006
-    d.box(
-        "glued_band",
-        (glue / 2, side / 2, 0.0002),
-        (-side / 2 + glue / 2, 0, z),
-        "paper",
-        top,
-        visual_only=True,
-    )
-    lift = d.uniform(0.1, 0.16)
+    if d.rng.random() < 0.5:  # a second pad under it, turned, its corners showing
+        second = d.choice([c for c in ("pink", "blue", "green", "orange") if c != first])
+        colors.append(second)
+        under = d.uniform(0.006, 0.008)
+        yaw = d.choice([-1, 1]) * d.uniform(0.25, 0.38)
+        d.slab(
+            "second_pad",
+            (side / 2 - 0.003, side / 2 - 0.003, under / 2),
+            0.0,
+            "paper",
+            second,
+            xy=(d.uniform(0.005, 0.008), d.uniform(0.004, 0.007)),
+            yaw=yaw,
+        )
+        z0 = under
+    d.slab("pad", (side / 2, side / 2, thick / 2), z0, "paper", first)
+    for k in range(1, 5):  # the sheets' edges on the sides the viewer sees
+        z = z0 + thick * k / 5
+        for j, (hx, hy, x, y) in enumerate(
+            ((side / 2 + 0.0002, 0.00015, 0, side / 2), (0.00015, side / 2 + 0.0002, side / 2, 0))
+        ):
+            d.box(
+                f"sheet_edge_{k}_{j}",
+                (hx, hy, 0.00014),
+                (x, y, z),
+                "paper",
+                "white",
+                visual_only=True,
+            )
+    top = z0 + thick
+    glue = side * 0.22  # the glued band along -x stays flat
+    z = top + 0.0003
+    d.box("glued_band", (glue / 2, side / 2, 0.0003), (-side / 2 + glue / 2, 0, z), "paper", first)
+    # the free part curls up towards +x in two bends
+    lift, curl = d.uniform(0.08, 0.11), d.uniform(0.3, 0.42)
     free = side - glue
-    centre = (-side / 2 + glue + math.cos(lift) * free / 2, 0.0, z + math.sin(lift) * free / 2)
+    first_len, end_len = free * 0.62, free * 0.38
+    x0 = -side / 2 + glue
+    cx = x0 + math.cos(lift) * first_len / 2
+    cz = z + math.sin(lift) * first_len / 2
     d.add(
         "lifted_note",
         "box",
-        (free / 2, side / 2, 0.0002),
-        centre,
+        (first_len / 2, side / 2, 0.0003),
+        (cx, 0.0, cz),
         "paper",
-        top,
+        first,
         quat=axis_angle_quat((0, 1, 0), -lift),
         visual_only=True,
     )
-    return Traits(tuple(dict.fromkeys((top, under))), "paper", "cuboid")
+    x1, z1 = x0 + math.cos(lift) * first_len, z + math.sin(lift) * first_len
+    d.add(
+        "curled_end",
+        "box",
+        (end_len / 2, side / 2, 0.0003),
+        (x1 + math.cos(curl) * end_len / 2, 0.0, z1 + math.sin(curl) * end_len / 2),
+        "paper",
+        first,
+        quat=axis_angle_quat((0, 1, 0), -curl),
+        visual_only=True,
+    )
+    return Traits(tuple(colors), "paper", "cuboid")

@@ -2,11 +2,9 @@
 
 from __future__ import annotations
 
-import dataclasses
 import math
 
 from ..design import Design, Traits
-from ..parts import axis_angle_quat, quat_mul
 from .registry import generator, revised
 
 GRIPS = ["red", "blue", "yellow", "black", "orange", "green"]
@@ -178,21 +176,6 @@ def pliers(d: Design) -> Traits:
     return Traits((grip, steel), "metal", "elongated")
 
 
-def _turn_parts(d: Design, yaw: float) -> None:
-    """Turn every part built so far by ``yaw`` about the vertical axis through the origin
-    (to lay a long tool across the close-up's view)."""
-    c, s = math.cos(yaw), math.sin(yaw)
-    q = axis_angle_quat((0, 0, 1), yaw)
-    d.parts = [
-        dataclasses.replace(
-            p,
-            pos=(p.pos[0] * c - p.pos[1] * s, p.pos[0] * s + p.pos[1] * c, p.pos[2]),
-            quat=tuple(float(v) for v in quat_mul(q, p.quat)),
-        )
-        for p in d.parts
-    ]
-
-
 @revised("pliers", 3)
 def pliers_3(d: Design) -> Traits:
     """Revision 3: classic combination pliers lying flat, jaws closed: a chunky head tapering
@@ -268,7 +251,6 @@ def pliers_3(d: Design) -> Traits:
         "black",
         visual_only=True,
     )
-    _turn_parts(d, math.radians(d.uniform(55.0, 70.0)))  # the head to the lower left
     return Traits((grip, steel), "metal", "elongated")
 
 
