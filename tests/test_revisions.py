@@ -39,10 +39,10 @@ REVISED_3_BATH: dict[str, tuple[str, str | None]] = {
 REVISED_3_DESK: dict[str, tuple[str, str | None]] = {
     "cheese_sticks": ("pack_band", None),  # a band printed STRING CHEESE, one stick peeled
     "garlic": ("loose_clove", None),  # a loose clove beside the head
-    "hair_clip": ("handle_lip_0", None),  # a claw clip: squeeze handles above the hinge
+    "hair_clip": ("claw_lip_0", None),  # a plastic claw clip: squeeze handles, round teeth
     "nail_clipper": ("thumb_pad", None),  # the lever arching back to a thumb pad
     "egg": ("cup_foot", None),  # standing in an egg cup
-    "pliers": ("pipe_grip", "black"),  # combination pliers: flat serrated nose, pipe grip
+    "pliers": ("rivet_pin", "gray"),  # combination pliers: flat nose, big pivot, pipe grip
     "bread": ("slice_0", None),  # a sliced loaf showing its crumb (or a slashed baguette)
     "potato": ("knob_0", None),
     "peach": ("cheek_0", None),  # the cleft
@@ -68,19 +68,19 @@ REVISED_3_DESK: dict[str, tuple[str, str | None]] = {
 REVISED_3_ROOM: dict[str, tuple[str, str | None]] = {
     "remote_holder": ("remote_0", None),  # TV remotes standing in its pockets
     "glasses_case": ("lens_0", "transparent"),  # open, round-rimmed glasses inside
-    "presenter_clicker": ("arrow_0_0", None),  # slim, big back/forward arrow keys, laser tip
+    "presenter_clicker": ("lanyard_0", None),  # short and slim, 3 keys, laser tip, lanyard
     "ac_remote": ("snowflake_0", "blue"),  # the display shows a temperature and a snowflake
     "earbud_case": ("bud_0", None),  # open, the earbuds seated inside
-    "mini_sculpture": ("shoulder_0", None),  # a bust or a standing figure of a person
+    "mini_sculpture": ("gown", None),  # a bust or a classical draped statue of a woman
     "lunch_box": ("umeboshi", "red"),  # a bento: rice with a red plum, side dishes
-    "placemat": ("fork_head", None),  # printed with a place setting
-    "wire_cutters": ("cheek_0", None),  # diagonal cutters: a short almond head, a V open
+    "placemat": ("napkin", None),  # a woven, banded, fringed mat with a folded napkin
+    "wire_cutters": ("cutting_edge_0", None),  # a short dark beak, bright cutting edges
     "peeler": ("slot", "black"),  # a slotted blade
     "hex_key": ("clip", None),  # a set of L keys in a clip
     "candle_holder": ("stub", None),  # a candlestick or chamberstick, a short unlit stub
     "basket": ("handle_0_0", None),  # woven, a twisted rim and a loop handle at each end
     "waste_bin": ("pedal", None),  # a pedal bin, its lid open, a bag over the rim
-    "storage_box": ("handle_front", None),  # a fabric storage box, handle cut-outs
+    "storage_box": ("rib_x0_0", None),  # an open moulded plastic bin, ribs and a thick lip
     "phone_stand": ("hinge_top", None),  # an empty folding stand: back plate, lip, hinges
     "stamp": ("die", "red"),  # a knob-handled wooden stamp on a red rubber die
 }

@@ -419,17 +419,26 @@ def hair_clip(d: Design) -> Traits:
     return Traits((color,), "plastic", "irregular")
 
 
+def _polyline_3(
+    d: Design, name: str, points: list[Point], cross, color: str, shape: str = "box", **kw
+) -> None:
+    """Plastic ``shape`` segments joining consecutive ``points`` (options passed on)."""
+    for k, (a, b) in enumerate(pairwise(points)):
+        d.segment(f"{name}_{k}", shape, a, b, cross, "plastic", color, **kw)
+
+
 @revised("hair_clip", 3)
 def hair_clip_3(d: Design) -> Traits:
-    """Revision 3: a claw clip standing on its teeth, the two squeeze handles curving up and
-    out above a sprung hinge and two combs of long, separate teeth curving down from it
-    like claws to interlock at the bottom (the first, a solid ridged shell from the hinge
-    down, read as a waffle iron). Each tooth is three straight strokes, so that the clip
-    stays under sixty parts."""
-    color = d.choice(["black", "brown", "pink", "beige", "transparent", "purple", "white"])
-    length, zh = d.uniform(0.06, 0.09), d.uniform(0.028, 0.034)
-    bulge, teeth = d.uniform(0.015, 0.019), d.choice([5, 6, 7])
-    d.rod("hinge", 0.0038, length, (0, 0, zh), "plastic", color)
+    """Revision 3: a plastic claw clip standing on its teeth, the two squeeze handles curving
+    up and out above a sprung hinge, two smooth curved shells below it, and from each a comb
+    of long, round-tipped teeth curving down like claws to interlock at the bottom, always in
+    a plastic colour (a ridged shell read as a waffle iron, square slat teeth in brown as a
+    wooden sled or a wine rack). Each tooth is three strokes, to stay under sixty parts."""
+    color = d.choice(["black", "black", "pink", "pink", "transparent", "purple", "white"])
+    kw: dict = {}
+    length, zh = d.uniform(0.06, 0.085), d.uniform(0.028, 0.034)
+    bulge, teeth = d.uniform(0.015, 0.019), d.choice([5, 6])
+    d.rod("hinge", 0.0038, length, (0, 0, zh), "plastic", color, **kw)
     d.rod("spring", 0.0045, length * 0.22, (0, 0, zh), "metal", "silver")
     handle = length * d.uniform(0.4, 0.46)
     reach, rise = d.uniform(0.014, 0.018), d.uniform(0.011, 0.014)
@@ -440,17 +449,26 @@ def hair_clip_3(d: Design) -> Traits:
             (0, s * reach * math.sin(a), zh + rise * (1 - math.cos(a)))
             for a in (0.15, 0.6, 1.05, 1.5)
         ]
-        _polyline(d, f"handle_{k}", grip, (handle, 0.0015), color)
-        d.rod(f"handle_lip_{k}", 0.0022, 2 * handle, grip[-1], "plastic", color)
-        arc = [(s * bulge * math.cos(a), zc + rz * math.sin(a)) for a in (1.35, 0.9)]
-        d.segment(
-            f"comb_{k}", "box", (0, *arc[0]), (0, *arc[1]), (length / 2, 0.0016), "plastic", color
-        )
+        _polyline_3(d, f"handle_{k}", grip, (handle, 0.0018), color, **kw)
+        d.rod(f"claw_lip_{k}", 0.0026, 2 * handle, grip[-1], "plastic", color, **kw)
+        arc = [(s * bulge * math.cos(a), zc + rz * math.sin(a)) for a in (1.35, 0.9, 0.45)]
+        for j in range(2):
+            d.segment(
+                f"shell_{k}_{j}",
+                "box",
+                (0, *arc[j]),
+                (0, *arc[j + 1]),
+                (length / 2, 0.0018),
+                "plastic",
+                color,
+                **kw,
+            )
         for j in range(teeth):
             x = -length / 2 + pitch * (j + 0.25 + 0.5 * k)
-            tooth = [(x, s * bulge * math.cos(a), zc + rz * math.sin(a)) for a in (0.9, 0.05, -0.8)]
-            tooth.append((x, -s * 0.004, 0.0016))
-            _polyline(d, f"tooth_{k}_{j}", tooth, (pitch * 0.18, 0.0016), color)
+            tooth = [(x, s * bulge * math.cos(a), zc + rz * math.sin(a)) for a in (0.45, -0.2)]
+            tooth.append((x, s * bulge * 0.55, zc - rz * 0.92))
+            tooth.append((x, -s * 0.004, 0.0022))
+            _polyline_3(d, f"tooth_{k}_{j}", tooth, pitch * 0.17, color, "capsule")
     return Traits((color,), "plastic", "irregular")
 
 

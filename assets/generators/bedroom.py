@@ -89,49 +89,68 @@ def storage_box(d: Design) -> Traits:
 
 @revised("storage_box", 3)
 def storage_box_3(d: Design) -> Traits:
-    """Revision 3: a fabric storage box (the cube that fills a shelf): soft woven walls
-    wider than tall, piped round the top in a second colour, an oval handle cut-out near
-    the top of the front and of each end, and a metal label holder on the front; open, so
-    its interior stays clear (a grey tub with its lid pushed half off read as a printer,
-    a hinged lid with a handle as a toolbox)."""
-    color = d.choice(["beige", "beige", "gray", "gray", "blue", "brown", "pink"])
-    trim = d.choice([c for c in ("brown", "black", "white", "beige") if c != color])
-    material, t = "fabric", 0.006
-    # long along y (across the camera's view), wider than tall
-    hx, hy = d.uniform(0.1, 0.125), d.uniform(0.14, 0.17)
-    h = d.uniform(0.15, 0.19)
+    """Revision 3: an open moulded plastic storage bin, long and lower than it is long: thin
+    walls stiffened by vertical moulded ribs, a thick rolled lip round the top standing out
+    from the walls (often in a second colour on a clear or frosted body), a grip ledge with
+    a dark hand slot under the lip at each end, and a label plate on the front; open, so its
+    interior stays clear (a fabric cube with handle cut-outs read as a storage basket, a
+    grey tub with its lid pushed half off as a printer, a hinged lid as a toolbox)."""
+    color = d.choice(["transparent", "transparent", "white", "gray", "blue", "pink"])
+    lip = d.choice(
+        ["blue", "white", "gray", "black", "green"] if color == "transparent" else [color]
+    )
+    material, t = "plastic", 0.004
+    # long along y (across the camera's view), lower than long
+    hx, hy = d.uniform(0.1, 0.12), d.uniform(0.14, 0.17)
+    h = d.uniform(0.12, 0.16)
     floor = d.open_box("box", (hx, hy), h, t, material, color, full="x")
-    d.frame("piping", (hx + 0.0015, hy + 0.0015), t + 0.003, h - 0.006, 0.008, material, trim)
-    # handle cut-outs: a dark slot with round ends and a stitched rim in the trim colour
-    hz = h - 0.045
-    slots = [("front", 0, hx, "x", hy * 0.22), ("end_0", -1, hy, "y", hx * 0.3)]
-    slots.append(("end_1", 1, hy, "y", hx * 0.3))
-    for name, sign, out, axis, half in slots:
-        r = 0.012
-        for k, (depth, rad, col) in enumerate(((0.0012, r + 0.004, trim), (0.0024, r, "black"))):
-            part = f"handle_{name}" if k else f"handle_rim_{name}"
-            if axis == "x":
-                pos, size, ends = (out + depth / 2, 0, hz), (depth / 2, half, rad), "x"
-            else:
-                pos, size, ends = (0, sign * (out + depth / 2), hz), (half, depth / 2, rad), "y"
-            d.box(part, size, pos, material, col, visual_only=True)
-            for j, s in enumerate((-1, 1)):
-                c = (pos[0], s * half, hz) if axis == "x" else (s * half, pos[1], hz)
-                d.rod(f"{part}_end_{j}", rad, depth, c, material, col, axis=ends, visual_only=True)
-    # the label holder on the front, under the handle: a metal frame round a white card
-    lw, lh, lz = hy * 0.2, 0.016, h * 0.38
-    d.box("label_holder", (0.0012, lw + 0.004, lh + 0.004), (hx + 0.0012, 0, lz), "metal", "silver")
+    lo, lh = 0.007, 0.011  # the lip's overhang and depth
+    d.frame("lip", (hx + lo, hy + lo), lo + 0.005, h - lh + 0.002, lh, material, lip)
+    # moulded ribs down the long sides and the ends, under the lip
+    rib_h = (h - lh - 0.006) / 2
+    ribs = d.choice([4, 6])  # an even count: a gap in the middle for the label
+    for k, sign in enumerate((-1, 1)):
+        for j in range(ribs):
+            y = -hy + 0.02 + j * (2 * hy - 0.04) / (ribs - 1)
+            d.box(
+                f"rib_x{k}_{j}",
+                (0.003, 0.003, rib_h),
+                (sign * (hx + 0.003), y, 0.006 + rib_h),
+                material,
+                color,
+            )
+        for j, x in enumerate((-hx * 0.55, hx * 0.55)):
+            d.box(
+                f"rib_y{k}_{j}",
+                (0.0025, 0.002, rib_h * 0.7),
+                (x, sign * (hy + 0.002), 0.006 + rib_h * 0.7),
+                material,
+                color,
+            )
+        # a grip ledge under the lip at each end, a dark hand slot in the wall below it
+        d.box(
+            f"grip_{k}",
+            (hx * 0.42, 0.006, 0.003),
+            (0, sign * (hy + lo + 0.005), h - lh + 0.003),
+            material,
+            lip,
+        )
+        d.box(
+            f"hand_slot_{k}",
+            (hx * 0.32, 0.0008, 0.007),
+            (0, sign * (hy + 0.0008), h - lh - 0.012),
+            material,
+            "black",
+            visual_only=True,
+        )
+    # a label plate on the front, between the middle ribs
+    lw, lz = min(hy * 0.22, (2 * hy - 0.04) / (ribs - 1) / 2 - 0.006), h * 0.45
     d.box(
-        "label_card",
-        (0.0006, lw, lh),
-        (hx + 0.0027, 0, lz),
-        "paper",
-        "white",
-        visual_only=True,
-        texture=Texture("ruled", ("gray",)),
+        "label_plate", (0.0008, lw, 0.016), (hx + 0.0008, 0, lz), "paper", "white", visual_only=True
     )
     d.interior((hx - t - 0.005, hy - t - 0.005), floor_z=floor, rim_z=h)
-    return Traits((color,), material, "cuboid")
+    colors = (color,) if lip == color else (color, lip)
+    return Traits(colors, material, "cuboid")
 
 
 @generator(

@@ -359,53 +359,61 @@ def _arrowhead(
 
 @revised("presenter_clicker", 3)
 def presenter_clicker_3(d: Design) -> Traits:
-    """Revision 3: a slim, long presenter remote lying across the view: two large page keys
-    side by side under its front half, marked with big white back and forward arrowheads
-    pointing left and right, a smaller red laser key behind them and a black-screen key, and
-    a glossy tapered laser nose with its red lens at the tip (a short remote with round keys
-    read as a car key fob)."""
-    color = d.choice(["black", "black", "gray", "silver", "white", "blue"])
+    """Revision 3: a short, slim presenter stick lying across the view: only three keys in a
+    row on top, a red laser key by the nose and two big page keys marked with white forward
+    and back arrowheads; a glossy black laser nose with a silver ring and red lens at the
+    tip, and a lanyard loop through the back end (a short remote with round keys read as a
+    car key fob; a long one with a keypad of page keys read as a TV remote)."""
+    color = d.choice(["black", "silver", "black", "gray", "silver", "white"])
     keys = "black" if color != "black" else d.choice(["gray", "silver"])
     ink = "white" if keys == "black" else "black"
-    lx, w, t = d.uniform(0.118, 0.132), d.uniform(0.026, 0.029), d.uniform(0.01, 0.012)
-    _pill(d, "body", lx, w, t, 0.0, "plastic", color, solid_fraction=0.6)
+    loop = d.choice(["black", "gray"] if color != "black" else ["gray", "red", "blue"])
+    lx, w, t = d.uniform(0.094, 0.104), d.uniform(0.022, 0.025), d.uniform(0.011, 0.013)
+    half = lx / 2 - w / 2  # the straight middle of the body, along y
+    d.box("body", (w / 2, half, t / 2), (0.0, 0.0, t / 2), "plastic", color, solid_fraction=0.6)
+    tip_color = "black" if color != "black" else "gray"  # the glossy laser end
+    d.upright("body_back", w / 2, t, 0.0, "plastic", color, xy=(0, -half), solid_fraction=0.3)
+    d.upright("laser_end", w / 2, t, 0.0, "plastic", tip_color, xy=(0, half), solid_fraction=0.3)
     d.segment(
         "nose",
         "ellipsoid",
-        (lx / 2 - 0.016, 0, t / 2),
-        (lx / 2 + 0.006, 0, t / 2),
-        (w / 2 - 0.0012, t / 2 - 0.0004),
+        (0, half - 0.002, t / 2),
+        (0, half + w / 2 + 0.007, t / 2),
+        (w * 0.34, t * 0.4),
         "plastic",
-        "black",
+        tip_color,
         solid_fraction=0.6,
     )
+    tip = half + w / 2 + 0.0062
     d.rod(
         "laser_ring",
-        0.0042,
-        0.0012,
-        (lx / 2 + 0.0055, 0, t / 2),
+        0.0032,
+        0.0014,
+        (0, tip - 0.0008, t / 2),
         "metal",
         "silver",
+        axis="y",
         visual_only=True,
     )
-    d.rod("laser", 0.003, 0.001, (lx / 2 + 0.0064, 0, t / 2), "glass", "red", visual_only=True)
-    kx = lx * 0.13  # the page keys' centre, in the front half
-    for k, side in enumerate((1, -1)):  # back (left, +y), forward (right, -y)
-        y = side * w * 0.24
-        d.ellipsoid(f"page_key_{k}", (0.017, w * 0.23, 0.0016), (kx, y, t), "rubber", keys)
-        _arrowhead(d, f"arrow_{k}", kx, y - side * 0.0012, t + 0.0015, 0.0064, side, ink)
-    d.upright("laser_key", w * 0.2, 0.0012, t, "rubber", "red", xy=(-lx * 0.1, 0))
-    d.upright(
-        "laser_dot",
-        w * 0.05,
-        0.0003,
-        t + 0.0012,
-        "plastic",
-        "white",
-        xy=(-lx * 0.1, 0),
-        visual_only=True,
+    d.rod(
+        "laser", 0.0024, 0.001, (0, tip + 0.0003, t / 2), "glass", "red", axis="y", visual_only=True
     )
-    d.slab("blank_key", (0.0035, w * 0.2, 0.0006), t, "rubber", keys, xy=(-lx * 0.24, 0))
+    d.upright("laser_key", w * 0.2, 0.0012, t, "rubber", "red", xy=(0, half - 0.006))
+    for k, (y, point) in enumerate(((half * 0.22, 1), (-half * 0.42, -1))):
+        d.ellipsoid(f"page_key_{k}", (w * 0.36, 0.011, 0.0016), (0, y, t), "rubber", keys)
+        _arrowhead(d, f"arrow_{k}", 0, y - point * 0.001, t + 0.0016, 0.0058, point, ink)
+    # the lanyard loop through a slot at the back end
+    d.flat_ring(
+        "lanyard",
+        0.0058,
+        0.0016,
+        0.0022,
+        0.0,
+        "fabric",
+        loop,
+        center=(0.0, -lx / 2 - 0.0035),
+        segments=10,
+    )
     return Traits((color,), "plastic", "elongated")
 
 
@@ -699,8 +707,9 @@ def mini_sculpture_2(d: Design) -> Traits:
 @revised("mini_sculpture", 3)
 def mini_sculpture_3(d: Design) -> Traits:
     """Revision 3: always a statue of a person, a marble or bronze bust on a round socle or
-    a standing figure of human proportions (the abstract kinds read as a cairn or a ring,
-    and the ellipsoid figure with a knob head as a joystick)."""
+    a classical statue of a woman in a long draped gown (the abstract kinds read as a cairn
+    or a ring, the ellipsoid figure with a knob head as a joystick, and a standing figure
+    with jointed limbs as an artist's mannequin)."""
     return _sculpture_3(d)
 
 
@@ -799,8 +808,8 @@ def _sculpture(d: Design, fifth: str) -> Traits:
 
 def _sculpture_3(d: Design) -> Traits:
     """A small statue of a person on a plinth: a marble or bronze bust (chest, shoulders,
-    neck, a head with hair, ears and a nose) on a round socle, or a standing figure of
-    human proportions (legs, hips, torso, shoulders, arms, head)."""
+    neck, a head with hair, ears and a nose) on a round socle, or a draped woman (a flared
+    gown with folds, a sash, smooth arms, a head with the hair in a bun)."""
     bust = d.rng.random() < 0.5
     material, color = d.choice(
         [
@@ -811,8 +820,11 @@ def _sculpture_3(d: Design) -> Traits:
             ("metal", "golden"),
             ("metal", "brown"),
             ("stone", "black"),
-        ][: 4 if bust else 7]
+            ("stone", "white"),
+        ][: 4 if bust else 8]
     )
+    if (material, color) == ("metal", "golden"):  # a gilt woman on a black base: a trophy
+        material, color = "metal", "brown"
     fill = 0.3 if material == "metal" else 1.0
     plinth_mat, plinth = d.choice(
         [
@@ -868,46 +880,50 @@ def _sculpture_3(d: Design) -> Traits:
                 **kw,
             )
         return Traits((color, plinth), material, "irregular")
-    # a standing figure facing +x: about seven and a half heads tall
-    hgt = 0.082 * k
+    # a classical statue of a woman in a long draped gown, facing +x: a smooth skirt
+    # falling in folds to a flared hem, a high waist, bare shoulders, the hair in a bun
     pw, ph = 0.036 * k, 0.011 * k
     if d.rng.random() < 0.5:
         d.slab("plinth", (pw / 2, pw / 2, ph / 2), 0.0, plinth_mat, plinth, yaw=yaw)
     else:
         d.upright("plinth", pw / 2, ph, 0.0, plinth_mat, plinth)
-    z = lambda f: ph + f * hgt  # noqa: E731  height on the figure
-    stance = d.uniform(0.003, 0.0045) * k
+    hem_r = 0.0125 * k
+    d.upright("gown_hem", hem_r, 0.008 * k, ph, *look, solid_fraction=fill)
+    skirt_z = ph + 0.027 * k
+    d.ellipsoid("gown", (0.0092 * k, 0.0108 * k, 0.027 * k), (0, 0, skirt_z), *look, **kw)
+    waist = ph + 0.052 * k
+    d.ellipsoid(
+        "bodice", (0.0062 * k, 0.0082 * k, 0.011 * k), (0, 0, waist + 0.004 * k), *look, **kw
+    )
+    shoulder_z = waist + 0.014 * k
+    d.ellipsoid("shoulders", (0.0055 * k, 0.0105 * k, 0.0042 * k), (0, 0, shoulder_z), *look, **kw)
+    # folds of drapery down the front of the skirt, and a sash across the body
+    for j, y in enumerate((-0.0055, -0.0018, 0.0018, 0.0055)):
+        top = at(0.0058 * k, y * k * 0.7, waist - 0.002 * k)
+        low = at(0.0112 * k, y * k * 1.5, ph + 0.007 * k)
+        d.segment(f"fold_{j}", "capsule", top, low, 0.0014 * k, *look, visual_only=True)
+    d.segment(
+        "sash",
+        "capsule",
+        at(0.0035 * k, 0.008 * k, shoulder_z),
+        at(0.0055 * k, -0.0065 * k, waist - 0.004 * k),
+        0.0022 * k,
+        *look,
+        solid_fraction=fill,
+    )
+    pose = d.choice(["down", "chest"])
     for j, side in enumerate((-1, 1)):
-        y = side * 0.0042 * k
-        foot = at(0.0018 * k, y + side * stance * 0.3, ph + 0.0016 * k)
-        d.add(f"foot_{j}", "box", (0.0042 * k, 0.0022 * k, 0.0016 * k), foot, *look, **kw)
-        ankle = at(0, y + side * stance * 0.3, z(0.04))
-        knee = at(0.0008 * k, y + side * stance * 0.15, z(0.26))
-        hip = at(0, y, z(0.47))
-        d.segment(f"shin_{j}", "capsule", ankle, knee, 0.0031 * k, *look, solid_fraction=fill)
-        d.segment(f"thigh_{j}", "capsule", knee, hip, 0.0041 * k, *look, solid_fraction=fill)
-    d.ellipsoid("hips", (0.0058 * k, 0.0088 * k, 0.0065 * k), (0, 0, z(0.5)), *look, **kw)
-    limb = dict(solid_fraction=fill)
-    d.ellipsoid("torso", (0.0062 * k, 0.0098 * k, 0.0145 * k), (0, 0, z(0.64)), *look, **kw)
-    shoulder_z = z(0.79)
-    pose = d.choice(["down", "hip", "raised"])
-    for j, side in enumerate((-1, 1)):
-        root = at(0, side * 0.0105 * k, shoulder_z)
-        d.sphere(f"shoulder_{j}", 0.0032 * k, root, *look, **limb)
-        if pose == "hip" and j == 1:  # a hand on the hip, the elbow out
-            elbow = at(-0.002 * k, side * 0.019 * k, z(0.63))
-            hand = at(0.002 * k, side * 0.009 * k, z(0.5))
-        elif pose == "raised" and j == 1:  # an arm raised high
-            elbow = at(0.002 * k, side * 0.014 * k, shoulder_z + 0.011 * k)
-            hand = at(0.004 * k, side * 0.015 * k, shoulder_z + 0.024 * k)
-        else:  # hanging at the side
-            elbow = at(0.0005 * k, side * 0.0125 * k, z(0.61))
-            hand = at(0.002 * k, side * 0.012 * k, z(0.45))
-        d.segment(f"upper_arm_{j}", "capsule", root, elbow, 0.0027 * k, *look, **limb)
-        d.segment(f"forearm_{j}", "capsule", elbow, hand, 0.0023 * k, *look, **limb)
-    d.upright("neck", 0.0025 * k, 0.006 * k, shoulder_z, *look, **limb)
-    head = at(0.0006 * k, 0, shoulder_z + 0.0098 * k)
-    d.ellipsoid("head", (0.0056 * k, 0.0049 * k, 0.0062 * k), head, *look, **kw)
+        root = at(0, side * 0.0105 * k, shoulder_z - 0.001 * k)
+        if pose == "chest" and j == 1:  # a hand held to the breast
+            hand = at(0.0065 * k, side * 0.002 * k, shoulder_z - 0.011 * k)
+        else:  # hanging at the side, against the gown
+            hand = at(0.0018 * k, side * 0.0118 * k, waist - 0.014 * k)
+        d.segment(f"arm_{j}", "capsule", root, hand, 0.0024 * k, *look, solid_fraction=fill)
+    d.upright("neck", 0.0026 * k, 0.007 * k, shoulder_z, *look, solid_fraction=fill)
+    head = at(0.0006 * k, 0, shoulder_z + 0.0115 * k)
+    d.ellipsoid("head", (0.0055 * k, 0.0048 * k, 0.0064 * k), head, *look, **kw)
+    bun = at(-0.0052 * k, 0, head[2] + 0.0025 * k)
+    d.sphere("hair_bun", 0.0034 * k, bun, *look, solid_fraction=fill)
     return Traits((color, plinth), material, "irregular")
 
 

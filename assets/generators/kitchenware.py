@@ -296,79 +296,75 @@ def wire_cutters(d: Design) -> Traits:
 @revised("wire_cutters", 3)
 def wire_cutters_3(d: Design) -> Traits:
     """Revision 3: diagonal side cutters lying a little open on their return spring, laid
-    across the view: a short, wide, pointed head (as wide as it is long) of two wedge
-    jaws tapering to a point, opened like a beak so that a V gap runs from the rivet to the
-    tip between their two straight, polished cutting edges; a round boss with a rivet; a
-    bright V spring between the handles; thick dipped grips, two-tone (the first, long
-    straight jaws, read as pliers or a can opener; a small dark head, its jaws almost
-    shut, read as pliers again; a wire held in the jaws read as wire strippers)."""
+    across the view: a short, dark, pointed head (about as wide as it is long) of two
+    almond jaws opened like a beak, so that a V gap runs from the rivet to the point between
+    their two bright, ground cutting edges; a round boss with a rivet; a bright V spring
+    between the handles; two-tone dipped grips (the first, long straight jaws, read as
+    pliers or a can opener; a small head with its jaws almost shut read as pliers again; a
+    wire held in the jaws read as wire strippers)."""
     grip = d.choice(["red", "red", "yellow", "red", "orange", "blue"])
     tip = d.choice(["yellow", "black"]) if grip == "red" else d.choice(["red", "black"])
-    metal = d.choice(["black", "black", "gray"])
-    shine = "silver"  # the ground cutting edges
-    jaw_len, jaw_w = d.uniform(0.027, 0.031), d.uniform(0.0115, 0.0128)
-    handle_len, closed = d.uniform(0.084, 0.094), d.uniform(0.012, 0.015)
-    open_a = math.radians(d.uniform(9.0, 10.5))  # each half turned open by the spring
+    metal = "black"  # a dark oxide head, so that the ground edges shine
+    shine = d.choice(["silver", "white"])  # the ground cutting edges
+    jaw_len, jaw_w = d.uniform(0.033, 0.036), d.uniform(0.0125, 0.0135)
+    handle_len, closed = d.uniform(0.088, 0.096), d.uniform(0.008, 0.01)
+    open_a = math.radians(d.uniform(10.0, 11.5))  # each half turned open by the spring
     thick = d.uniform(0.011, 0.013)
     z = thick / 2
-    r = d.uniform(0.0062, 0.007)  # the dipped grips' radius
+    r = d.uniform(0.0062, 0.0068)  # the dipped grips' radius
 
     def turn(x: float, y: float, sign: int) -> tuple[float, float]:
+        """A point of one half, opened by the spring and laid along +y, across the view."""
         c, s = math.cos(sign * open_a), math.sin(sign * open_a)
-        return (x * c - y * s, x * s + y * c)
+        return (-(x * s + y * c), x * c - y * s)
 
-    d.upright("boss", jaw_w * 1.08, thick, 0.0, "metal", metal, xy=(-0.003, 0.0))
-    d.upright("rivet", 0.0042, thick + 0.0012, 0.0, "metal", "silver", xy=(-0.003, 0.0))
+    d.upright("boss", jaw_w * 0.85, thick, 0.0, "metal", metal)
+    d.upright("rivet", 0.004, thick + 0.0012, 0.0, "metal", "silver")
     for k, sign in enumerate((-1, 1)):
-        yaw = sign * open_a
-        # the jaw: a broad root, a strip along the straight cutting edge to the point (its
-        # inner side the cutting edge) and a fat rounded cheek outside it: half an almond
-        for j, (length, width) in enumerate(((0.3, 0.85), (0.82, 0.2))):
-            seg, w = jaw_len * length, jaw_w * width
-            cx, cy = turn(seg / 2, sign * w / 2, sign)
-            d.box(f"jaw_{k}_{j}", (seg / 2, w / 2, z), (cx, cy, z), "metal", metal, yaw=yaw)
-        p0 = turn(-0.001, sign * jaw_w * 0.78, sign)
-        p1 = turn(jaw_len * 1.02, sign * jaw_w * 0.03, sign)
+        yaw = sign * open_a + math.pi / 2
+        # the jaw: a fat almond cheek from beside the boss to the point on the cutting
+        # edge, and the bright ground cutting edge along its inner side, full height
+        p0 = turn(-0.002, sign * jaw_w * 0.66, sign)
+        p1 = turn(jaw_len * 1.04, sign * jaw_w * 0.02, sign)
         d.segment(
-            f"cheek_{k}", "ellipsoid", (*p0, z), (*p1, z), (jaw_w * 0.46, z * 0.96), "metal", metal
+            f"cheek_{k}", "ellipsoid", (*p0, z), (*p1, z), (jaw_w * 0.52, z * 0.96), "metal", metal
         )
-        # the polished bevel ground along the cutting edge, on top
-        bx, by = turn(jaw_len * 0.45, sign * 0.0012, sign)
+        bx, by = turn(jaw_len * 0.46, sign * 0.0015, sign)
         d.box(
-            f"bevel_{k}",
-            (jaw_len * 0.38, 0.0012, 0.0004),
-            (bx, by, thick + 0.0002),
+            f"cutting_edge_{k}",
+            (jaw_len * 0.36, 0.0015, z * 0.9),
+            (bx, by, z),
             "metal",
             shine,
             yaw=yaw,
         )
         # the handle of this half lies on the other side of the pivot
-        knee = turn(-0.024, -sign * 0.0075, sign)
+        knee = turn(-0.017, -sign * 0.0068, sign)
         end = turn(-handle_len, -sign * closed, sign)
         d.segment(
             f"shank_{k}",
             "box",
-            (*turn(-0.006, -sign * 0.004, sign), z),
+            (*turn(-0.006, -sign * 0.0042, sign), z),
             (*knee, z * 0.9),
-            (0.0045, z * 0.6),
+            (0.0035, z * 0.6),
             "metal",
             metal,
         )
-        mid = tuple(a + 0.72 * (b - a) for a, b in zip(knee, end, strict=True))
+        mid = tuple(a + 0.62 * (b - a) for a, b in zip(knee, end, strict=True))
         d.segment(f"grip_{k}", "capsule", (*knee, r), (*mid, r), r, "rubber", grip)
-        d.segment(f"grip_end_{k}", "capsule", (*mid, r), (*end, r), r * 1.08, "rubber", tip)
+        d.segment(f"grip_end_{k}", "capsule", (*mid, r), (*end, r), r * 1.02, "rubber", tip)
         # the return spring: a bright wire V from a coil by the pivot to each handle
         hand = tuple(a + 0.42 * (b - a) for a, b in zip(knee, end, strict=True))
         d.segment(
             f"spring_{k}",
             "box",
-            (-0.026, 0.0, r * 1.5),
-            (hand[0], hand[1] * 0.8, r * 1.5),
+            (0.0, -0.026, r * 1.5),
+            (hand[0] * 0.8, hand[1], r * 1.5),
             (0.0011, 0.0011),
             "metal",
             "silver",
         )
-    d.upright("spring_coil", 0.003, 0.003, r * 1.5 - 0.0015, "metal", "silver", xy=(-0.026, 0))
+    d.upright("spring_coil", 0.003, 0.003, r * 1.5 - 0.0015, "metal", "silver", xy=(0, -0.026))
     return Traits((grip, metal), "metal", "irregular")
 
 

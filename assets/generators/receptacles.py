@@ -891,68 +891,62 @@ def placemat(d: Design) -> Traits:
 
 @revised("placemat", 3)
 def placemat_3(d: Design) -> Traits:
-    """Revision 3: a woven or wipe-clean mat printed with a place setting (a plate between a
-    fork and a knife, a glass above the knife), a fabric one fringed at its short ends (the
-    slatted first mat read as a bamboo mat). The plate and glass are printed as stacked
-    discs, the fringe as a few tassels: at most sixty parts."""
-    material = d.choice(["fabric", "fabric", "plastic", "plastic"])
-    color = d.choice(["red", "blue", "green", "white", "gray", "beige", "pink", "orange"])
-    hem = d.choice([color, "white"] if color != "white" else ["white", "gray", "blue"])
-    ink = "gray" if color in ("white", "beige") else "white"
+    """Revision 3: a woven cotton placemat, a soft rectangle with rounded corners and a
+    contrasting hem, woven with bold bands of colour across both ends, fringed with loose
+    threads at its short ends, a folded cloth napkin lying on one side (the mat printed with
+    a place setting read as an induction cooktop or a certificate, the slatted first mat as a
+    bamboo mat). The interior is the bare cloth beside the napkin."""
+    material = "fabric"
+    color = d.choice(["beige", "beige", "white", "gray", "blue", "green", "red", "orange"])
+    band = d.choice([c for c in ("red", "blue", "green", "brown", "orange", "white") if c != color])
+    napkin = d.choice([c for c in ("white", band, "beige") if c != color])
     hx, hy = d.uniform(0.13, 0.145), d.uniform(0.095, 0.11)
-    thick = 0.003
-    fringe = material == "fabric"
-    _lipped_slab(d, hx, hy, thick, material, color, hem, False)
-    z = thick + 0.0028
+    thick, r = 0.003, 0.02
+    d.box("slab", (hx - r, hy, thick / 2), (0, 0, thick / 2), material, color)
+    d.box("slab_ends", (hx, hy - r, thick / 2), (0, 0, thick / 2), material, color)
+    for k, (sx, sy) in enumerate(((-1, -1), (-1, 1), (1, -1), (1, 1))):
+        d.upright(f"corner_{k}", r, thick, 0.0, material, color, xy=(sx * (hx - r), sy * (hy - r)))
     kw = dict(visual_only=True)
-    plate = min(hy - 0.022, hx * 0.5)
-
-    def disc(name: str, radius: float, layer: int, tint: str, center=(0.0, 0.0)) -> None:
-        """A printed disc; a later layer prints over an earlier one (a ring: two discs)."""
-        zk = z + 0.0002 * layer
-        d.upright(name, radius, 0.0002, zk, "plastic", tint, xy=center, **kw)
-
-    disc("plate_rim", plate, 0, ink)
-    disc("plate_face", plate - 0.006, 1, color)
-    disc("plate_well", plate * 0.62 + 0.002, 2, ink)
-    disc("plate_well_face", plate * 0.62, 3, color)
-    fx, kx = -plate - 0.018, plate + 0.016
-    span = plate * 0.95
-    d.box("fork_handle", (0.0025, span * 0.55, 0.0002), (fx, span * 0.42, z), "plastic", ink, **kw)
-    d.box("fork_head", (0.0065, 0.006, 0.0002), (fx, -span * 0.18, z), "plastic", ink, **kw)
-    for k in range(4):
-        x = fx - 0.0055 + k * 0.0037
-        d.box(
-            f"fork_tine_{k}",
-            (0.001, 0.011, 0.0002),
-            (x, -span * 0.18 - 0.016, z),
-            "plastic",
-            ink,
-            **kw,
-        )
-    d.box("knife_handle", (0.003, span * 0.4, 0.0002), (kx, span * 0.55, z), "plastic", ink, **kw)
+    z = thick + 0.0002
+    # woven bands of colour across the mat near each short end: a wide band and a thin one
+    wide, thin = d.uniform(0.008, 0.012), d.uniform(0.0025, 0.0035)
+    for k, sign in enumerate((-1, 1)):
+        x0 = sign * (hx - 0.022)
+        d.box(f"band_{k}", (wide, hy - 0.002, 0.0002), (x0, 0, z), material, band, **kw)
+        x1 = x0 - sign * (wide + thin + 0.006)
+        d.box(f"band_thin_{k}", (thin, hy - 0.002, 0.0002), (x1, 0, z), material, band, **kw)
+    # loose threads of fringe at the short ends
+    threads = 14
+    for k, sign in enumerate((-1, 1)):
+        for j in range(threads):
+            y = -hy + r * 0.6 + j * (2 * hy - 1.2 * r) / (threads - 1)
+            d.box(
+                f"fringe_{k}_{j}",
+                (0.0055, 0.0012, 0.0006),
+                (sign * (hx + 0.0045), y, 0.0006),
+                material,
+                color,
+                **kw,
+            )
+    # a folded napkin lying on the +y side, its rounded fold towards the middle
+    nx, ny, nt = d.uniform(0.05, 0.06), d.uniform(0.028, 0.034), 0.005
+    ncy = hy - 0.012 - ny
+    d.box("napkin", (nx, ny, nt / 2), (0, ncy, thick + nt / 2), material, napkin)
+    d.rod("napkin_fold", nt / 2, 2 * nx, (0, ncy - ny, thick + nt / 2), material, napkin)
     d.box(
-        "knife_blade",
-        (0.0035, span * 0.52, 0.0002),
-        (kx + 0.0005, -span * 0.36, z),
-        "plastic",
-        ink,
+        "napkin_edge",
+        (nx, 0.0015, 0.0002),
+        (0, ncy + ny * 0.45, thick + nt + 0.0002),
+        material,
+        band if napkin != band else color,
         **kw,
     )
-    glass = (kx + 0.006, -hy + 0.022)
-    disc("glass_print", 0.015, 0, ink, center=glass)
-    disc("glass_face", 0.012, 1, color, center=glass)
-    if fringe:  # tassels of loose threads at the short ends
-        tassels = 12
-        for k, sign in enumerate((-1, 1)):
-            for j in range(tassels):
-                y = -hy + 0.007 + j * (2 * hy - 0.014) / (tassels - 1)
-                d.box(
-                    f"fringe_{k}_{j}",
-                    (0.008, 0.0028, 0.0006),
-                    (sign * (hx + 0.008), y, 0.0006),
-                    "fabric",
-                    hem,
-                    **kw,
-                )
-    return Traits(tuple(dict.fromkeys((color, hem))), material, "flat")
+    free_y0 = -hy + 0.012
+    free_y1 = ncy - ny - 0.006
+    d.interior(
+        (hx - 0.045, (free_y1 - free_y0) / 2),
+        floor_z=thick,
+        rim_z=thick + 0.003,
+        center=(0.0, (free_y0 + free_y1) / 2),
+    )
+    return Traits(tuple(dict.fromkeys((color, band))), material, "flat")

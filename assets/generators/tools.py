@@ -178,75 +178,86 @@ def pliers(d: Design) -> Traits:
 
 @revised("pliers", 3)
 def pliers_3(d: Design) -> Traits:
-    """Revision 3: classic combination pliers lying flat, jaws closed: a chunky head tapering
-    from a round joint with a rivet to a flat, square, polished nose with serrated jaws
-    meeting on a seam, the oval pipe grip behind the nose, and two gently spread straight
-    handles in thick insulated two-tone sleeves with collars (the first, thin arms, read as
-    a clothespin; pointed jaws on wide V handles read as pruning shears)."""
+    """Revision 3: ordinary combination pliers lying flat across the view, jaws closed: a
+    chunky head tapering from a big round pivot with a polished rivet to a broad, flat,
+    square nose whose two jaws meet on a dark serrated seam, the rounded pipe-grip opening
+    between nose and pivot, and two long, straight handles in plain single-colour
+    rubber sleeves (the first, thin arms, read as a clothespin; pointed jaws on wide V
+    handles read as pruning shears; a toothed, ticked nose and two-tone banded sleeves read
+    as wire strippers or a crimper)."""
     grip = d.choice(["red", "red", "blue", "yellow", "orange", "red"])
-    band = d.choice(["yellow", "black"]) if grip in ("red", "blue") else d.choice(["red", "black"])
-    steel = d.choice(["black", "gray", "silver"])
-    polish = "white" if steel == "silver" else "silver"
-    jaw_len, head_w = d.uniform(0.04, 0.045), d.uniform(0.011, 0.0125)
-    handle_len, spread = d.uniform(0.115, 0.13), d.uniform(0.02, 0.024)
+    steel = d.choice(["gray", "silver", "black", "gray"])
+    polish = "silver" if steel == "black" else steel
+    jaw_len, head_w = d.uniform(0.043, 0.048), d.uniform(0.0125, 0.0135)
+    nose_w = head_w * d.uniform(0.68, 0.74)  # the flat nose's half width
+    handle_len, spread = d.uniform(0.118, 0.13), d.uniform(0.016, 0.019)
     t = d.uniform(0.011, 0.013)
     z = t / 2
-    r = d.uniform(0.0065, 0.0072)
-    d.upright("boss", head_w * 1.12, t, 0.0, "metal", steel)
-    d.upright("rivet", 0.0045, t + 0.001, 0.0, "metal", polish)
-    nose = jaw_len * 0.42
+    r = d.uniform(0.0068, 0.0074)
+
+    def p(x: float, y: float, h: float) -> tuple[float, float, float]:
+        """The tool's frame (x from the handles to the nose) laid along +y, across the view."""
+        return (-y, x, h)
+
+    d.upright("pivot", head_w * 1.2, t, 0.0, "metal", steel)
+    d.upright("rivet", head_w * 0.6, t + 0.0008, 0.0, "metal", polish)
+    d.upright("rivet_pin", head_w * 0.22, t + 0.0012, 0.0, "metal", "gray")
+    nose = jaw_len * 0.44
+    x0 = jaw_len - nose
     for k, s in enumerate((-1, 1)):
         d.segment(
             f"cheek_{k}",
-            "ellipsoid",
-            (-0.006, s * head_w * 0.62, z),
-            (jaw_len - nose * 0.35, s * 0.0036, z),
-            (head_w * 0.62, z * 0.98),
+            "box",
+            p(0.0, s * head_w * 0.5, z),
+            p(x0 + 0.002, s * nose_w * 0.5, z),
+            (head_w * 0.5, z),
             "metal",
             steel,
         )
         d.box(
             f"jaw_{k}",
-            (nose / 2, 0.0031, z),
-            (jaw_len - nose / 2, s * 0.0031, z),
+            (nose_w / 2, nose / 2, z),
+            p(jaw_len - nose / 2, s * nose_w / 2, z),
             "metal",
             polish,
         )
-        # the handle: a steel arm, then the sleeve with its collar and end band
-        knee = (-0.017, -s * 0.0085)
+        # the handle: a steel arm from the pivot, then a plain straight sleeve
+        knee = (-0.019, -s * 0.0075)
         end = (-handle_len, -s * spread)
         d.segment(
             f"arm_{k}",
             "box",
-            (-0.004, -s * 0.005, z),
-            (*knee, z * 0.9),
-            (0.0048, z * 0.62),
+            p(-0.004, -s * 0.0045, z),
+            p(*knee, z * 0.9),
+            (0.005, z * 0.62),
             "metal",
             steel,
         )
-        collar = tuple(a + 0.08 * (b - a) for a, b in zip(knee, end, strict=True))
-        mid = tuple(a + 0.8 * (b - a) for a, b in zip(knee, end, strict=True))
-        d.segment(f"collar_{k}", "capsule", (*knee, r), (*collar, r), r * 1.1, "rubber", band)
-        d.segment(f"grip_{k}", "capsule", (*collar, r), (*mid, r), r, "rubber", grip)
-        d.segment(f"grip_end_{k}", "capsule", (*mid, r), (*end, r), r * 1.05, "rubber", band)
-    # the seam with its teeth, and the pipe grip's opening
-    x0 = jaw_len - nose
+        d.segment(f"sleeve_{k}", "capsule", p(*knee, r), p(*end, r), r, "rubber", grip)
+    # the seam where the serrated jaws meet, with fine cross teeth, and the pipe grip
     d.box(
         "seam",
-        (nose / 2, 0.0004, 0.0003),
-        (x0 + nose / 2, 0, t),
+        (0.0005, nose / 2, 0.0003),
+        p(x0 + nose / 2, 0, t),
         "metal",
         "black",
         visual_only=True,
     )
-    for j in range(5):
-        x = x0 + nose * (0.12 + 0.19 * j)
-        d.box(f"tooth_{j}", (0.0005, 0.0022, 0.0003), (x, 0, t), "metal", "black", visual_only=True)
+    for j in range(6):
+        x = x0 + nose * (0.1 + 0.16 * j)
+        d.box(
+            f"serration_{j}",
+            (nose_w * 0.3, 0.0003, 0.0002),
+            p(x, 0, t),
+            "metal",
+            "gray" if polish == "silver" else "silver",
+            visual_only=True,
+        )
     d.add(
         "pipe_grip",
         "ellipsoid",
-        (0.0055, 0.0028, 0.0006),
-        (x0 - 0.005, 0, t + 0.0001),
+        (0.0036, 0.0062, 0.0006),
+        p(x0 - 0.0055, 0, t + 0.0001),
         "metal",
         "black",
         visual_only=True,
