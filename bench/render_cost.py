@@ -15,8 +15,9 @@ ManiSkill's full visual meshes; then the three cameras together at 128, 224 and 
 side. Every figure is a ratio to the whole scene's time in the same round.
 
 ``--robot-share`` times only the whole scene against the same scene with the robot's render
-bodies removed, per robot, over ``--repeats`` interleaved rounds (more rounds than the
-profile's, for the one ratio the Franka's render target is stated in: whole / without robot).
+bodies removed, per robot, over ``--repeats`` paired rounds in alternating order (more rounds
+than the profile's, for the one ratio the Franka's render target is stated in: whole /
+without robot).
 """
 
 from __future__ import annotations

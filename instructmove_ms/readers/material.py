@@ -166,10 +166,10 @@ def best_camera(views, k: int, cameras: str = "scene") -> str:
     among ``cameras`` (one of ``CAMERAS``)."""
     if cameras not in CAMERAS:
         raise ValueError(f"cameras {cameras!r} is not one of {CAMERAS}")
-    scene = views.cameras[: views.scene]
-    if cameras == "every" or not any(views.mask(c, k).any() for c in scene):
-        scene = views.cameras
-    return max(scene, key=lambda c: int(views.mask(c, k).sum()))
+    pool = views.cameras[: views.scene]
+    if cameras == "every" or not any(views.mask(c, k).any() for c in pool):
+        pool = views.cameras
+    return max(pool, key=lambda c: int(views.mask(c, k).sum()))
 
 
 def in_scene(
