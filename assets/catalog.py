@@ -5,7 +5,7 @@ from __future__ import annotations
 import hashlib
 import uuid as uuidlib
 from collections.abc import Iterable
-from dataclasses import asdict, dataclass, field
+from dataclasses import asdict, dataclass, field, replace
 from functools import cache, cached_property
 from importlib import resources
 
@@ -171,6 +171,14 @@ def instance_uuid(category: str, index: int, revision: int = 1) -> str:
     ``revision`` (a revised build is another asset, with its own uuid and draws)."""
     suffix = "" if revision == 1 else f"@r{revision}"
     return str(uuidlib.uuid5(UUID_NAMESPACE, f"{category}/{index}{suffix}"))
+
+
+def plain(inst: Instance) -> Instance:
+    """``inst`` without its textures (its parts' geometry, colours and masses unchanged)."""
+    if all(p.texture is None for p in inst.parts):
+        return inst
+    parts = tuple(replace(p, texture=None) for p in inst.parts)
+    return replace(inst, parts=parts)
 
 
 def generate_instance(category: str, index: int, library: int = LIBRARY) -> Instance:

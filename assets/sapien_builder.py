@@ -10,9 +10,8 @@ import sapien
 import sapien.physx as physx
 import sapien.render as render
 
-from .catalog import Instance
+from .catalog import Instance, plain
 from .parts import Part
-from .snapshot import plain
 from .textures import Texture, image
 from .uv_meshes import aspect, mesh_path
 from .vocab import MATERIALS

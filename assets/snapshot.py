@@ -20,7 +20,6 @@ which the held-out sets of versions 2 and 3 were published (version 4 plays on `
 
 from __future__ import annotations
 
-import dataclasses
 import json
 from dataclasses import dataclass
 from functools import cache
@@ -29,7 +28,7 @@ from pathlib import Path
 
 from ..files import write_json, write_text
 from ..worker_log import mark
-from .catalog import Catalog, Instance, generate_instance
+from .catalog import Catalog, Instance, generate_instance, plain
 from .generators import GENERATORS, LIBRARY
 from .identity import IDENTITY_SCHEME, content_hash, hash_for
 from .importer import data_home
@@ -53,14 +52,6 @@ SHIPPED = {
     "printed": Frozen(textures=True, library=1),
     "detailed": Frozen(textures=True, library=2),
 }
-
-
-def plain(inst: Instance) -> Instance:
-    """``inst`` without its textures (its parts' geometry, colours and masses unchanged)."""
-    if all(p.texture is None for p in inst.parts):
-        return inst
-    parts = tuple(dataclasses.replace(p, texture=None) for p in inst.parts)
-    return dataclasses.replace(inst, parts=parts)
 
 
 def build_entries(

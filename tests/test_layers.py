@@ -1,9 +1,12 @@
-"""Layering: the core modules that describe and score an episode import neither the task
-families nor a simulator, directly or through the package modules they import."""
+"""Layering: the package's modules import one way (no module imports, even lazily or for
+type checking only, one that imports it back), and the core modules that describe and score
+an episode import neither the task families nor a simulator, directly or through the package
+modules they import."""
 
 from __future__ import annotations
 
 import ast
+import configparser
 from pathlib import Path
 
 import pytest
@@ -25,8 +28,14 @@ CORE = (
     "files",
 )
 FORBIDDEN = ("instructmove_ms.tasks", "instructmove_ms.agents", "mani_skill", "sapien", "torch")
-#: Where the package's subpackages live in a checkout.
-FOLDERS = {"instructmove_ms.assets": ROOT / "assets", "instructmove_ms": ROOT / "instructmove_ms"}
+#: Where the package's subpackages live in a checkout (setup.cfg's package_dir), the
+#: folders shipped inside it first.
+FOLDERS = {
+    "instructmove_ms.assets": ROOT / "assets",
+    "instructmove_ms.agents": ROOT / "agents",
+    "instructmove_ms.tasks": ROOT / "tasks",
+    "instructmove_ms": ROOT / "instructmove_ms",
+}
 
 
 def source_of(module: str) -> Path | None:
@@ -42,7 +51,9 @@ def source_of(module: str) -> Path | None:
 
 
 def imports(module: str, path: Path) -> set[str]:
-    """Every module ``module`` (at ``path``) imports, anywhere in it, relative ones resolved."""
+    """Every module ``module`` (at ``path``) imports, anywhere in it (at the top, in a
+    function, under ``if TYPE_CHECKING``), relative ones resolved; ``from P import name``
+    imports the module ``P.name`` where there is one, else ``P``."""
     package = module if path.name == "__init__.py" else module.rpartition(".")[0]
     found = set()
     for node in ast.walk(ast.parse(path.read_text())):
@@ -54,10 +65,8 @@ def imports(module: str, path: Path) -> set[str]:
                 parts = package.split(".")
                 parent = ".".join(parts[: len(parts) - node.level + 1])
                 base = f"{parent}.{base}" if base else parent
-            found.add(base)
-            found.update(
-                f"{base}.{alias.name}" for alias in node.names if source_of(f"{base}.{alias.name}")
-            )
+            modules = {f"{base}.{a.name}" for a in node.names if source_of(f"{base}.{a.name}")}
+            found.update(modules or {base})
     return found
 
 
@@ -96,3 +105,88 @@ def test_the_check_sees_a_forbidden_import(tmp_path, monkeypatch):
     (tmp_path / "b.py").write_text("import json\nfrom instructmove_ms.tasks import TASKS\n")
     monkeypatch.setitem(FOLDERS, "fake", tmp_path)
     assert "instructmove_ms.tasks" in closure("fake.a")
+
+
+def package_modules() -> list[str]:
+    """Every module of the package in a checkout (a package by its name)."""
+    found = set()
+    for prefix, folder in FOLDERS.items():
+        for path in folder.rglob("*.py"):
+            parts = path.relative_to(folder).with_suffix("").parts
+            name = ".".join((prefix, *parts[: -1 if parts[-1] == "__init__" else None]))
+            if source_of(name) == path:  # a folder shipped as its own package is its own
+                found.add(name)
+    return sorted(found)
+
+
+def import_graph() -> dict[str, set[str]]:
+    """Package module -> the package modules it imports (a submodule of a module that
+    is not one counts as the module: ``P.name`` for ``from P import name``)."""
+    graph = {}
+    for module in package_modules():
+        targets = set()
+        for name in imports(module, source_of(module)):
+            while name and source_of(name) is None:
+                name = name.rpartition(".")[0]
+            if name and name != module:
+                targets.add(name)
+        graph[module] = targets
+    return graph
+
+
+def circles(graph: dict[str, set[str]]) -> list[list[str]]:
+    """The strongly connected components of ``graph`` of more than one node (Tarjan)."""
+    index: dict[str, int] = {}
+    low: dict[str, int] = {}
+    stack: list[str] = []
+    found = []
+
+    def visit(node: str) -> None:
+        index[node] = low[node] = len(index)
+        stack.append(node)
+        for nxt in sorted(graph.get(node, ())):
+            if nxt not in index:
+                visit(nxt)
+                low[node] = min(low[node], low[nxt])
+            elif nxt in stack:
+                low[node] = min(low[node], index[nxt])
+        if low[node] == index[node]:
+            component = [stack.pop()]
+            while component[-1] != node:
+                component.append(stack.pop())
+            if len(component) > 1:
+                found.append(sorted(component))
+
+    for node in sorted(graph):
+        if node not in index:
+            visit(node)
+    return found
+
+
+def test_the_import_graph_has_no_circle():
+    graph = import_graph()
+    setup = configparser.ConfigParser()
+    setup.read(ROOT / "setup.cfg")
+    assert set(setup["options"]["packages"].split()) <= set(graph)  # every layer walked
+    assert "instructmove_ms.planning.robot" in graph["instructmove_ms.planning.kinematics"]
+    assert circles(graph) == []
+
+
+def test_the_circle_check_sees_every_kind_of_import(tmp_path, monkeypatch):
+    """Type-only and function-level imports count; a circle through three modules is found."""
+    (tmp_path / "__init__.py").write_text("")
+    (tmp_path / "a.py").write_text(
+        "from typing import TYPE_CHECKING\nif TYPE_CHECKING:\n    from .b import B\n"
+    )
+    (tmp_path / "b.py").write_text("def f():\n    from . import c\n")
+    (tmp_path / "c.py").write_text("import json\nfrom fake.a import thing\n")
+    monkeypatch.setitem(globals(), "FOLDERS", {"fake": tmp_path})
+    graph = import_graph()
+    assert graph == {
+        "fake": set(),
+        "fake.a": {"fake.b"},
+        "fake.b": {"fake.c"},
+        "fake.c": {"fake.a"},
+    }
+    assert circles(graph) == [["fake.a", "fake.b", "fake.c"]]
+    assert circles({"a": {"b"}, "b": {"c"}}) == []

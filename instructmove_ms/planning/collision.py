@@ -1,29 +1,21 @@
 """A python-fcl collision world: one arm's robot posed by FK against the table and the objects.
 
-Geometry comes from the SAPIEN physx collision shapes of the robot's links and of the scene
-actors (boxes, spheres, capsules, cylinders, convex and triangle meshes; planes such as the
-floor are left out), converted once per episode by the planning scene; each world poses its
-own collision objects of that shared geometry. Poses are in the robot's base frame.
+Each world poses its own collision objects of the geometry the planning scene converted once
+per episode (``geometry``). Poses are in the robot's base frame.
 """
 
 from __future__ import annotations
 
-from collections.abc import Iterable
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
 
 import fcl
 import numpy as np
 import sapien
-import sapien.physx as physx
 
+from .geometry import Geometry
 from .kinematics import ArmKinematics
+from .robot import RobotModel
 
-if TYPE_CHECKING:
-    from .robot import RobotModel
-
-#: SAPIEN's capsules and cylinders run along local x, fcl's along local z.
-_X_TO_Z = sapien.Pose(q=[np.sqrt(0.5), 0.0, np.sqrt(0.5), 0.0])
 _ATTACHED = "attached"
 
 
@@ -37,46 +29,6 @@ class Shape:
 
 
 Geoms = list[Shape]
-#: A body's collision geometry: each fcl geometry with its pose (4x4) in the body's frame.
-Geometry = list[tuple[fcl.CollisionGeometry, np.ndarray]]
-
-
-def shape_geometry(shape: physx.PhysxCollisionShape) -> tuple[fcl.CollisionGeometry, sapien.Pose]:
-    """The fcl geometry of a SAPIEN collision shape and its pose in the body frame."""
-    local = shape.get_local_pose()
-    if isinstance(shape, physx.PhysxCollisionShapeBox):
-        return fcl.Box(*(2.0 * np.asarray(shape.half_size))), local
-    if isinstance(shape, physx.PhysxCollisionShapeSphere):
-        return fcl.Sphere(shape.radius), local
-    if isinstance(shape, physx.PhysxCollisionShapeCapsule):
-        return fcl.Capsule(shape.radius, 2.0 * shape.half_length), local * _X_TO_Z
-    if isinstance(shape, physx.PhysxCollisionShapeCylinder):
-        return fcl.Cylinder(shape.radius, 2.0 * shape.half_length), local * _X_TO_Z
-    if isinstance(
-        shape, physx.PhysxCollisionShapeConvexMesh | physx.PhysxCollisionShapeTriangleMesh
-    ):
-        verts = np.asarray(shape.get_vertices(), dtype=float) * np.asarray(shape.get_scale())
-        tris = np.asarray(shape.get_triangles(), dtype=np.int64)
-        if isinstance(shape, physx.PhysxCollisionShapeTriangleMesh):
-            mesh = fcl.BVHModel()
-            mesh.beginModel(len(verts), len(tris))
-            mesh.addSubModel(verts, tris)
-            mesh.endModel()
-            return mesh, local
-        faces = np.hstack([np.full((len(tris), 1), 3), tris]).ravel()
-        return fcl.Convex(verts, len(tris), faces), local
-    raise TypeError(f"unsupported collision shape {type(shape).__name__}")
-
-
-def body_geometry(shapes: Iterable[physx.PhysxCollisionShape]) -> Geometry:
-    """The fcl geometry of a body's collision ``shapes`` (planes left out)."""
-    out = []
-    for shape in shapes:
-        if isinstance(shape, physx.PhysxCollisionShapePlane):
-            continue
-        geom, local = shape_geometry(shape)
-        out.append((geom, local.to_transformation_matrix()))
-    return out
 
 
 def _objects(geometry: Geometry) -> Geoms:

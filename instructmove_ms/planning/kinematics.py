@@ -8,13 +8,11 @@ from __future__ import annotations
 
 import copy
 from collections.abc import Callable, Sequence
-from typing import TYPE_CHECKING
 
 import numpy as np
 import sapien
 
-if TYPE_CHECKING:
-    from .robot import RobotModel
+from .robot import RobotModel
 
 
 class ArmKinematics:

@@ -17,7 +17,7 @@ import sapien.physx as physx
 from instructmove_ms.agents.hardware import Gripper, JointLimits
 from instructmove_ms.agents.interface import ArmSlots, PolicyInterface
 
-from .collision import Geometry, body_geometry
+from .geometry import Geometry, body_geometry
 
 
 @dataclass(frozen=True)

@@ -21,7 +21,8 @@ import sapien.physx as physx
 from instructmove_ms.assets.catalog import Instance
 from instructmove_ms.episode import actor_name
 
-from .collision import CollisionWorld, Geometry, body_geometry
+from .collision import CollisionWorld
+from .geometry import Geometry, body_geometry
 from .kinematics import ArmKinematics
 from .rig import Rig
 from .robot import RobotModel
