@@ -1,6 +1,6 @@
 """What decides the last bits of this machine's floating point: the CPU (its vendor's
 approximate reciprocals in PhysX's contact generation), the BLAS kernel numpy runs, numpy's
-disabled CPU features and the kernels torch dispatches to (see the README's "The same
+disabled CPU features and the kernels torch dispatches to (see docs/machines.md, "The same
 benchmark on every machine")."""
 
 from __future__ import annotations

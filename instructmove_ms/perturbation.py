@@ -451,7 +451,7 @@ def perturb(spec: EpisodeSpec, levels: Mapping[str, int], ctx: Context) -> Episo
     return dataclasses.replace(spec, perturbation=record)
 
 
-#: How the README's table says each axis's numbers.
+#: How the table in docs/evaluation.md ("Perturbations") says each axis's numbers.
 DESCRIBE = {
     "lighting": "intensity x{intensity[0]}-{intensity[1]}, key light turned {tilt:g} deg, "
     "{kelvin[0]}-{kelvin[1]} K, {extra} lamps",
@@ -467,7 +467,7 @@ DESCRIBE = {
 
 
 def levels_markdown() -> str:
-    """The declared levels as a markdown table (the README lists it)."""
+    """The declared levels as a markdown table (docs/evaluation.md lists it)."""
     lines = ["| axis | level 1 | level 2 | level 3 |", "|---|---|---|---|"]
     for axis in AXES:
         cells = [DESCRIBE[axis].format(**LEVELS[axis][k]) for k in range(1, MAX_LEVEL + 1)]

@@ -244,13 +244,13 @@ def test_perturbed_demos_record_their_levels_and_replay_to_the_same_scene(tmp_pa
         generate(task, "franka", 2, tmp_path, shard_size=1, perturbation="layout:2")
 
 
-def test_the_readme_lists_the_declared_levels():
+def test_the_evaluation_page_lists_the_declared_levels():
     from pathlib import Path
 
     from instructmove_ms.perturbation import levels_markdown
 
-    readme = (Path(__file__).parents[1] / "README.md").read_text()
-    assert levels_markdown() in readme
+    page = (Path(__file__).parents[1] / "docs" / "evaluation.md").read_text()
+    assert levels_markdown() in page
 
 
 def test_robustness_rows_cross_conditions_with_their_own_baselines():

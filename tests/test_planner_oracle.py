@@ -12,7 +12,7 @@ EPISODES = 8
 
 
 #: Each pick family with its default robot and PlaceA2B with the Franka (on the PiperX the
-#: first grasp plan sometimes leaves no release into the goal: see the README).
+#: first grasp plan sometimes leaves no release into the goal: see docs/data.md, "Demonstrations").
 CASES = [(t, s.default_robot) for t, s in sorted(TASKS.items()) if s.cue != "place"]
 CASES.append(("PlaceA2B-InstructMove", "franka"))
 
