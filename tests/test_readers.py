@@ -131,6 +131,12 @@ def test_close_ups_are_drawn_from_the_seed(tmp_path):
     assert (tmp_path / "0" / "reader" / "BRIEF.txt").read_text() == BRIEFS["close_ups"]
     with pytest.raises(ValueError, match="unknown category 'teapot'"):
         material.close_ups(catalog, 5, tmp_path / "x", only=["teapot"])
+    every = json.loads(
+        material.close_ups(catalog, 5, tmp_path / "all", ["mug"], every_instance=True).read_text()
+    )
+    assert sorted(i["uuid"] for i in every["items"]) == sorted(
+        i.uuid for i in catalog.of_category("mug")
+    )
 
 
 def test_in_scene_boxes_each_category_in_a_stored_episode(tmp_path):

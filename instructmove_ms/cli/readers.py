@@ -21,7 +21,7 @@ def _cmd_draw(args: argparse.Namespace) -> int:
         catalog = load_snapshot(args.snapshot)
         if args.library:
             catalog = material.at_revision(catalog, args.library)
-        key = material.close_ups(catalog, args.seed, out, args.only)
+        key = material.close_ups(catalog, args.seed, out, args.only, args.every_instance)
     elif kind == "in_scene":
         import instructmove_ms  # noqa: F401  (registration)
         from instructmove_ms.assets.snapshot import load_snapshot
@@ -107,6 +107,12 @@ def add_parsers(sub: argparse._SubParsersAction) -> None:
                 metavar="N",
                 help="the snapshot's instances as library revision N builds them (to judge "
                 "a revision before a snapshot freezes it)",
+            )
+            p.add_argument(
+                "--every-instance",
+                action="store_true",
+                help="every instance of the categories, not one random one (to screen a "
+                "library instance by instance)",
             )
         else:
             _add_set_version(p)

@@ -66,16 +66,26 @@ def at_revision(catalog: Catalog, library: int) -> Catalog:
     return Catalog(f"{catalog.name}@r{library}", rebuilt)
 
 
-def close_ups(catalog: Catalog, seed: int, out: Path, only: list[str] | None = None) -> Path:
+def close_ups(
+    catalog: Catalog,
+    seed: int,
+    out: Path,
+    only: list[str] | None = None,
+    every_instance: bool = False,
+) -> Path:
     """A close-up of a random instance of every category of ``catalog`` (or of ``only``),
-    in a random order, numbered: pages ``close_ups_N.png``."""
+    in a random order, numbered: pages ``close_ups_N.png``. ``every_instance`` shows every
+    instance of those categories instead (a screen of a library, instance by instance)."""
     from ..assets.sheet import photograph
 
     rng = np.random.default_rng(seed)
-    chosen = [
-        catalog.of_category(c)[int(rng.integers(len(catalog.of_category(c))))]
-        for c in _categories(catalog, only)
-    ]
+    if every_instance:
+        chosen = [i for c in _categories(catalog, only) for i in catalog.of_category(c)]
+    else:
+        chosen = [
+            catalog.of_category(c)[int(rng.integers(len(catalog.of_category(c))))]
+            for c in _categories(catalog, only)
+        ]
     chosen = [chosen[k] for k in rng.permutation(len(chosen))]
     tiles = photograph(chosen, progress="close-ups")
     folder = _reader(out, "close_ups")
