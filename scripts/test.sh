@@ -9,6 +9,7 @@ cd "$(dirname "${BASH_SOURCE[0]}")/.."
 bash scripts/setup.sh --dev
 bash scripts/lerobot_env.sh  # the real LeRobot 0.4.4, isolated: loads v3.0, trains, serves
 bash scripts/lerobot_v21_env.sh  # lerobot 0.3.3 over it: loads v2.1 as openpi does
+bash scripts/cff_env.sh  # cffconvert, isolated: validates CITATION.cff
 py="${PYTHON:-python3}"
 "$py" -m ruff check .
 if [ "$#" -gt 0 ]; then

@@ -35,8 +35,25 @@ VERBS = (
 )
 
 
+def version_line() -> str:
+    """The package's version and the benchmark version its stored sets make (pre-release
+    until 1.0 is released)."""
+    from instructmove_ms import __version__
+    from instructmove_ms.heldout import SET_VERSION
+
+    return (
+        f"instructmove-ms {__version__}; benchmark: held-out sets v{SET_VERSION} "
+        "(pre-release, before InstructMove 1.0)"
+    )
+
+
 def build_parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(prog="instructmove", description=__doc__)
+    parser = argparse.ArgumentParser(
+        prog="instructmove",
+        description=__doc__,
+        formatter_class=argparse.RawDescriptionHelpFormatter,  # the version line unwrapped
+    )
+    parser.add_argument("--version", action="version", version=version_line())
     sub = parser.add_subparsers(dest="command", required=True)
     for verb in VERBS:
         verb.add_parsers(sub)
