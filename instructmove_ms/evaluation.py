@@ -346,7 +346,7 @@ def _evaluate(
     if todo:  # in the config's order, however the shards finished
         write_text(log, "".join(json.dumps(row) + "\n" for row in rows))
     stats = getattr(policy, "stats", dict)() if workers.in_process(len(batches)) else {}
-    return write_reports(out, rows, stats)
+    return write_reports(out, rows, stats, config.about())
 
 
 def evaluate(

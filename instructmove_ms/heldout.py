@@ -49,6 +49,13 @@ SEEDS_PER_EPISODE = 5
 CHECKSUMS = "checksums.json"
 
 
+def benchmark_name(version: int | None = None) -> str:
+    """The benchmark version the stored sets of ``version`` (None: the current one) make."""
+    version = SET_VERSION if version is None else version
+    check_choice("set version", version, SET_VERSIONS)
+    return f"InstructMove held-out sets v{version} (pre-release, before InstructMove 1.0)"
+
+
 def default_folder(version: int | None = None) -> Path:
     """The package's folder of the stored sets of ``version`` (None: the current one)."""
     version = SET_VERSION if version is None else version
@@ -155,20 +162,45 @@ class ConfigEpisode:
 
 @dataclass(frozen=True)
 class EvaluatorConfig:
-    """An evaluator config: the env to make and exactly which episodes to run."""
+    """An evaluator config: the env to make and exactly which episodes to run; ``benchmark``
+    names the benchmark version its episodes come from (None: not from a stored set)."""
 
     env_id: str
     max_episode_steps: int
     env_kwargs: dict
     episodes: tuple[ConfigEpisode, ...]
+    benchmark: str | None = None
 
     @property
     def perturbation(self) -> dict[str, int]:
         """The perturbation levels of the config's episodes ({} for none)."""
         return dict(self.episodes[0].spec.perturbation.get("levels", {})) if self.episodes else {}
 
+    def about(self) -> dict:
+        """What a number measured on this config must name: the benchmark version, the
+        package, the env and its horizon, robot, split, condition, perturbation, episodes,
+        their seeds and the asset snapshots they use."""
+        from . import __version__
+
+        seeds = sorted(e.seed for e in self.episodes)
+        return {
+            "benchmark": self.benchmark or "episodes of their own config, not a stored set",
+            "package": f"instructmove-ms {__version__}",
+            "env": self.env_id,
+            "horizon": self.max_episode_steps,
+            **{
+                key: ", ".join(sorted({str(getattr(e.spec, key)) for e in self.episodes}))
+                for key in ("robot", "split", "condition")
+            },
+            "perturbation": ", ".join(f"{a} {lv}" for a, lv in self.perturbation.items()) or "none",
+            "episodes": len(self.episodes),
+            "seeds": f"{seeds[0]} to {seeds[-1]}" if seeds else "none",
+            "snapshots": ", ".join(sorted({e.spec.snapshot for e in self.episodes})),
+        }
+
     def to_dict(self) -> dict:
         return {
+            **({"benchmark": self.benchmark} if self.benchmark else {}),
             "env_info": {
                 "env_id": self.env_id,
                 "max_episode_steps": self.max_episode_steps,
@@ -217,6 +249,7 @@ class EvaluatorConfig:
             ),
             env_kwargs=dict(info.get("env_kwargs", {})),
             episodes=tuple(episodes),
+            benchmark=data.get("benchmark"),
         )
 
     @classmethod
@@ -308,7 +341,8 @@ def evaluator_config(
     levels = parse_levels(perturbation)
     if condition != "normal" or levels:
         specs = _respec(env_id, robot, split, condition, levels, specs)
-    return config_of(env_id, robot, split, condition, specs)
+    config = config_of(env_id, robot, split, condition, specs)
+    return dataclasses.replace(config, benchmark=benchmark_name(version))
 
 
 def config_of(

@@ -130,8 +130,9 @@ def choice(spec: EpisodeSpec, k: int) -> str:
     return "candidate"
 
 
-def wilson(successes: int, n: int, z: float = 1.96) -> tuple[float, float]:
-    """Wilson score interval of a binomial rate (95% by default)."""
+def wilson(successes: float, n: int, z: float = 1.96) -> tuple[float, float]:
+    """Wilson score interval of a binomial rate (95% by default); ``successes`` may be a
+    sum of scores in [0, 1]."""
     if n == 0:
         return (0.0, 1.0)
     p = successes / n
@@ -176,6 +177,9 @@ def aggregate(
             row["language_following"] = followed / max(1, followed + original)
             row["language_following_ci"] = wilson(followed, followed + original)
         row["stage_score"] = sum(r.stage_score for r in group) / n
+        # S averages scores in [0, 1], whose variance is at most S (1 - S): the Wilson
+        # interval of the rate S over n episodes holds it (conservatively)
+        row["stage_score_ci"] = wilson(row["stage_score"] * n, n)
         row["chance"] = sum(1.0 / r.num_goals for r in group) / n
         rows.append(row)
     return rows
@@ -196,6 +200,7 @@ def markdown_table(
         *keys,
         "episodes",
         "stages (S)",
+        "S [95% CI]",
         "success [95% CI]",
         "any reach / lift",
         "grounding errors",
@@ -209,6 +214,7 @@ def markdown_table(
             *(str(row[k]) for k in keys),
             str(row["episodes"]),
             paper_cell(row),
+            _rate(row, "stage_score"),
             _rate(row, "success"),
             f"{row['any_reach']:.2f} / {row['any_lift']:.2f}",
             f"{row['grounding_error']:.2f}",

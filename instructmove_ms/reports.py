@@ -58,12 +58,17 @@ def write_csv(path: Path, rows: list[dict]) -> None:
     write_text(path, text.getvalue())
 
 
-def write_reports(out: Path, rows: list[dict], policy: dict | None = None) -> dict:
+def write_reports(
+    out: Path, rows: list[dict], policy: dict | None = None, about: dict | None = None
+) -> dict:
     """Every report of ``rows``; returns the summary (with ``policy``: what the policy
-    reports of itself, a served one its server's timing)."""
+    reports of itself, a served one its server's timing; with ``about``: what the numbers
+    measured, which a reported number must name)."""
     results = [episode_result(r) for r in rows]
     errors = sum(bool(r.get("error")) for r in rows)
     summary = {"groups": aggregate(results), "episodes": len(results), "errors": errors}
+    if about:
+        summary["about"] = about
     if policy:
         summary["policy"] = policy
     stage_funnel(summary["groups"], out / "stage_funnel.png")
@@ -78,6 +83,7 @@ def write_reports(out: Path, rows: list[dict], policy: dict | None = None) -> di
     write_text(
         out / "report.md",
         "# InstructMove evaluation\n\n"
+        + _measured(about)
         + markdown_table(summary["groups"])
         + "\n"
         + note
@@ -86,3 +92,16 @@ def write_reports(out: Path, rows: list[dict], policy: dict | None = None) -> di
     write_csv(out / "episodes.csv", rows)
     write_maniskill_results(out, rows)
     return summary
+
+
+def _measured(about: dict | None) -> str:
+    """The list of what was measured, which a reported number names with its S and
+    interval."""
+    if not about:
+        return ""
+    lines = "".join(f"- {key.replace('_', ' ')}: {value}\n" for key, value in about.items())
+    return (
+        "What was measured (a reported number names these, with its S and 95% interval):\n\n"
+        + lines
+        + "\n"
+    )

@@ -36,9 +36,22 @@ def test_reports_and_resume(tmp_path):
         "config.json",
     ):
         assert (tmp_path / name).is_file()
-    (group,) = json.loads((tmp_path / "summary.json").read_text())["groups"]
+    written = json.loads((tmp_path / "summary.json").read_text())
+    (group,) = written["groups"]
     assert 0.0 <= group["reach"] <= 1.0 and len(group["success_ci"]) == 2
     assert group["chance"] == 1 / 6
+    low, high = group["stage_score_ci"]
+    assert low <= group["stage_score"] <= high
+    # what a reported number names: the benchmark version, split, condition, perturbation,
+    # episodes and seeds of the stored set it was measured on
+    seeds = sorted(spec.seed for spec in heldout.load_set(TASK, "franka", "seen")[:2])
+    about = written["about"]
+    assert about["benchmark"] == heldout.benchmark_name(heldout.SET_VERSION)
+    assert (about["robot"], about["split"], about["condition"]) == ("franka", "seen", "normal")
+    assert (about["perturbation"], about["episodes"]) == ("none", 2)
+    assert about["seeds"] == f"{seeds[0]} to {seeds[1]}"
+    report = (tmp_path / "report.md").read_text()
+    assert f"- benchmark: {about['benchmark']}" in report and "S [95% CI]" in report
     first = (tmp_path / "episodes.jsonl").read_text().splitlines()
     evaluate(RandomPolicy(0), TASK, "seen", tmp_path, robot="franka", episodes=3)
     lines = (tmp_path / "episodes.jsonl").read_text().splitlines()

@@ -11,7 +11,7 @@ import yaml
 
 import instructmove_ms
 from instructmove_ms.cli import main
-from instructmove_ms.heldout import SET_VERSION
+from instructmove_ms.heldout import SET_VERSION, benchmark_name
 
 ROOT = Path(__file__).parents[1]
 #: scripts/cff_env.sh builds it (scripts/test.sh runs that first).
@@ -52,4 +52,5 @@ def test_version_names_the_package_and_the_benchmark(capsys):
     assert done.value.code == 0
     line = capsys.readouterr().out.strip()
     assert line.startswith(f"instructmove-ms {instructmove_ms.__version__};")
-    assert f"held-out sets v{SET_VERSION}" in line
+    assert line.endswith(f"benchmark: {benchmark_name()}")
+    assert f"held-out sets v{SET_VERSION}" in benchmark_name()

@@ -39,12 +39,9 @@ def version_line() -> str:
     """The package's version and the benchmark version its stored sets make (pre-release
     until 1.0 is released)."""
     from instructmove_ms import __version__
-    from instructmove_ms.heldout import SET_VERSION
+    from instructmove_ms.heldout import benchmark_name
 
-    return (
-        f"instructmove-ms {__version__}; benchmark: held-out sets v{SET_VERSION} "
-        "(pre-release, before InstructMove 1.0)"
-    )
+    return f"instructmove-ms {__version__}; benchmark: {benchmark_name()}"
 
 
 def build_parser() -> argparse.ArgumentParser:
