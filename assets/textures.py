@@ -363,6 +363,7 @@ WORDS: dict[str, tuple[str, ...]] = {
     "staples": ("STAPLES",),
     "cheese": ("STRING", "CHEESE"),
     "cookies": ("COOKIES",),
+    "shampoo": ("SHAMPOO",),
 }
 #: The Hershey font words are printed in (pure integer rasterisation: the same pixels on
 #: every machine; no font file).
@@ -544,6 +545,81 @@ def _ruled(img, inks, motif) -> None:
 
 PATTERNS.update(pictogram=_pictogram, ruled=_ruled)
 NEEDED_INKS.update(pictogram=1, ruled=1)
+
+
+def _tortoise(img, inks, motif) -> None:
+    """Tortoiseshell: soft blotches, darker and a few lighter amber shades of the ground,
+    scattered over about a third of the image (the same scatter on every machine: a fixed
+    seed)."""
+    h, w = img.shape[:2]
+    ground = _ground(img)
+    rng = np.random.default_rng(11)
+    count = max(8, int(w * h / 600))
+    for _ in range(count):
+        centre = (int(rng.uniform(0, w)), int(rng.uniform(0, h)))
+        axes = (int(rng.uniform(0.03, 0.08) * h), int(rng.uniform(0.015, 0.04) * h))
+        shade = rng.choice([0.25, 0.35, 0.5, 1.6, 1.6])
+        angle = float(rng.uniform(0, 180))
+        color = _bgr(_shade(ground, shade))
+        cv2.ellipse(img, centre, axes, angle, 0, 360, color, -1, cv2.LINE_AA)
+    img[:] = cv2.GaussianBlur(img, (0, 0), 2.0)
+
+
+def _place_setting(img, inks, motif) -> None:
+    """A place setting printed in the first ink, seen by a diner at the image's right
+    edge: a plate (two rings) in the middle, a fork below it and a knife above it, both
+    pointing left (away from the diner), drawn at the image's real shape."""
+    h, w = img.shape[:2]
+    ink = _bgr(COLORS[inks[0]])
+    aa = cv2.LINE_AA
+    radius = int(min(0.4 * w, 0.3 * h))
+    c = (w // 2, h // 2)
+    cv2.circle(img, c, radius, ink, max(3, radius // 14), aa)
+    cv2.circle(img, c, int(radius * 0.66), ink, max(2, radius // 24), aa)
+    left, right = int(0.14 * w), int(0.86 * w)
+    span = right - left
+    unit = max(2, int(0.022 * h))  # a handle's half width
+    # the fork, below the plate: a handle, a rounded head and four tines
+    fy = int(c[1] + radius + 0.5 * (h / 2 - radius))
+    neck = left + int(0.42 * span)
+    cv2.line(img, (neck, fy), (right, fy), ink, 2 * unit, aa)
+    cv2.circle(img, (right, fy), int(unit * 1.3), ink, -1, aa)
+    head_top, head_bottom = fy - int(2.6 * unit), fy + int(2.6 * unit)
+    root = left + int(0.3 * span)
+    cv2.ellipse(img, (root, fy), (int(0.12 * span), int(2.6 * unit)), 0, -90, 90, ink, -1, aa)
+    cv2.rectangle(img, (root - int(0.04 * span), head_top), (root, head_bottom), ink, -1)
+    tine = max(1, int(0.5 * unit))
+    for k in range(4):
+        y = int(head_top + tine / 2 + k * (head_bottom - head_top - tine) / 3)
+        cv2.line(img, (left, y), (root, y), ink, tine + 1, aa)
+    # the knife, above the plate: a handle and a long blade with a rounded tip
+    ky = int(c[1] - radius - 0.5 * (h / 2 - radius))
+    blade_root = left + int(0.5 * span)
+    cv2.line(img, (blade_root, ky), (right, ky), ink, int(2.2 * unit), aa)
+    cv2.circle(img, (right, ky), int(unit * 1.2), ink, -1, aa)
+    blade = np.array(
+        [
+            (blade_root, ky - int(1.2 * unit)),
+            (left + int(0.12 * span), ky - int(1.6 * unit)),
+            (left, ky),
+            (left + int(0.05 * span), ky + int(1.6 * unit)),
+            (blade_root, ky + int(1.6 * unit)),
+        ],
+        np.int32,
+    )
+    cv2.fillPoly(img, [blade], ink, aa)
+
+
+def _place_setting_woven(img, inks, motif) -> None:
+    """``_place_setting`` printed over woven cloth (``_weave``)."""
+    _weave(img, inks, motif)
+    _place_setting(img, inks, motif)
+
+
+PATTERNS.update(
+    tortoise=_tortoise, place_setting=_place_setting, place_setting_woven=_place_setting_woven
+)
+NEEDED_INKS.update(tortoise=0, place_setting=1, place_setting_woven=1)
 
 #: Every pattern that prints words -> the key of its words in ``WORDS``.
 PRINTED_WORDS: dict[str, str] = {

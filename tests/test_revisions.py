@@ -34,12 +34,13 @@ REVISED_3_BATH: dict[str, tuple[str, str | None]] = {
     "spice_jar": ("sifter", None),  # a shaker top over a jar labelled with its spice
     "sponge": ("pores_x0", None),  # porous foam under a scourer
     "beverage_bottle": ("neck_ring", None),  # a soft-drink bottle labelled COLA / SODA
+    "shampoo_bottle": ("front_label", None),  # a flat bottle printed SHAMPOO, a flip cap
 }
 #: ... groceries and stationery ...
 REVISED_3_DESK: dict[str, tuple[str, str | None]] = {
     "cheese_sticks": ("pack_band", None),  # a band printed STRING CHEESE, one stick peeled
     "garlic": ("loose_clove", None),  # a loose clove beside the head
-    "hair_clip": ("claw_lip_0", None),  # a plastic claw clip: squeeze handles, round teeth
+    "hair_clip": ("claw_lip_0_0", None),  # a claw clip: long curled teeth, spring on top
     "nail_clipper": ("thumb_pad", None),  # the lever arching back to a thumb pad
     "egg": ("cup_foot", None),  # standing in an egg cup
     "pliers": ("rivet_pin", "gray"),  # combination pliers: flat nose, big pivot, pipe grip
@@ -63,6 +64,7 @@ REVISED_3_DESK: dict[str, tuple[str, str | None]] = {
     "coaster": ("stain_1", "brown"),  # a stack of cork coasters, a glass's ring on the top
     "tomato": ("lobe_0", None),  # red lobes round a dimple, a green star calyx
     "biscuit": ("cookie_dome", None),  # a chocolate-chip cookie (or COOKIES pack)
+    "lemon": ("nipple", None),  # yellow, longer than wide, tapering to a pointed nipple
 }
 #: ... electronics, bedroom, kitchenware, living-room, receptacles and tools.
 REVISED_3_ROOM: dict[str, tuple[str, str | None]] = {
@@ -73,8 +75,8 @@ REVISED_3_ROOM: dict[str, tuple[str, str | None]] = {
     "earbud_case": ("bud_0", None),  # open, the earbuds seated inside
     "mini_sculpture": ("gown", None),  # a bust or a classical draped statue of a woman
     "lunch_box": ("umeboshi", "red"),  # a bento: rice with a red plum, side dishes
-    "placemat": ("napkin", None),  # a woven, banded, fringed mat with a folded napkin
-    "wire_cutters": ("cutting_edge_0", None),  # a short dark beak, bright cutting edges
+    "placemat": ("place_setting", None),  # rounded vinyl or cloth, a place setting printed
+    "wire_cutters": ("bevel_0_0", "white"),  # a short black pointed head, bright bevels
     "peeler": ("slot", "black"),  # a slotted blade
     "hex_key": ("clip", None),  # a set of L keys in a clip
     "candle_holder": ("stub", None),  # a candlestick or chamberstick, a short unlit stub
@@ -83,6 +85,7 @@ REVISED_3_ROOM: dict[str, tuple[str, str | None]] = {
     "storage_box": ("rib_x0_0", None),  # an open moulded plastic bin, ribs and a thick lip
     "phone_stand": ("hinge_top", None),  # an empty folding stand: back plate, lip, hinges
     "stamp": ("die", "red"),  # a knob-handled wooden stamp on a red rubber die
+    "vase": ("belly", None),  # a belly under a narrower neck and a flared lip
 }
 #: The reprinted categories of revision 3: their part shows it by printing words (a
 #: pattern of ``textures.PRINTED_WORDS``) where the same part drew a wordmark before.

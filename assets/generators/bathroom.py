@@ -8,6 +8,7 @@ from itertools import pairwise
 from ..design import Design, Point, Traits
 from ..parts import X_TO_Z, axis_angle_quat
 from ..textures import Texture
+from ..vocab import COLORS
 from .desktop import BRIGHT
 from .registry import generator, revised
 
@@ -429,46 +430,49 @@ def _polyline_3(
 
 @revised("hair_clip", 3)
 def hair_clip_3(d: Design) -> Traits:
-    """Revision 3: a plastic claw clip standing on its teeth, the two squeeze handles curving
-    up and out above a sprung hinge, two smooth curved shells below it, and from each a comb
-    of long, round-tipped teeth curving down like claws to interlock at the bottom, always in
-    a plastic colour (a ridged shell read as a waffle iron, square slat teeth in brown as a
-    wooden sled or a wine rack). Each tooth is three strokes, to stay under sixty parts."""
-    color = d.choice(["black", "black", "pink", "pink", "transparent", "purple", "white"])
-    kw: dict = {}
-    length, zh = d.uniform(0.06, 0.085), d.uniform(0.028, 0.034)
-    bulge, teeth = d.uniform(0.015, 0.019), d.choice([5, 6])
-    d.rod("hinge", 0.0038, length, (0, 0, zh), "plastic", color, **kw)
-    d.rod("spring", 0.0045, length * 0.22, (0, 0, zh), "metal", "silver")
-    handle = length * d.uniform(0.4, 0.46)
-    reach, rise = d.uniform(0.014, 0.018), d.uniform(0.011, 0.014)
-    zc, rz = (zh + 0.0016) / 2, (zh - 0.0016) / 2
+    """Revision 3: a plastic claw clip standing on its teeth, its hinge across the view:
+    each half curves out and down from the hinge, a smooth shell and then a comb of a few
+    long, flat teeth curling in to interlock with the other half's at the bottom; above
+    the hinge two squeeze tabs a side, the bright spring showing between them; printed
+    tortoiseshell or one glossy colour (many thin round teeth seen along the hinge read as
+    an engine block, slat teeth as a sled or a wine rack)."""
+    color = d.choice(["brown", "brown", "brown", "black", "black", "pink", "purple", "beige"])
+    kw: dict = {"texture": Texture("tortoise")} if color == "brown" else {}
+    length, rz = d.uniform(0.064, 0.074), d.uniform(0.017, 0.019)
+    rx, teeth = d.uniform(0.018, 0.02), d.choice([4, 5])
+    zh = 2 * rz
+    d.rod("hinge", 0.0032, length, (0, 0, zh), "plastic", color, axis="y")
+    d.rod("spring", 0.0048, length * 0.26, (0, 0, zh), "metal", "silver", axis="y")
     pitch = length / teeth
+    t = 0.0017  # half the thickness of a shell
+    tab = length * 0.3  # a squeeze tab's length; the spring shows between the two
+
+    def stroke(name: str, a, b, y: float, half_w: float, **extra) -> None:
+        d.segment(
+            name, "box", (a[0], y, a[1]), (b[0], y, b[1]), (half_w, t), "plastic", color, **extra
+        )
+
     for k, s in enumerate((-1, 1)):
-        grip = [
-            (0, s * reach * math.sin(a), zh + rise * (1 - math.cos(a)))
-            for a in (0.15, 0.6, 1.05, 1.5)
-        ]
-        _polyline_3(d, f"handle_{k}", grip, (handle, 0.0018), color, **kw)
-        d.rod(f"claw_lip_{k}", 0.0026, 2 * handle, grip[-1], "plastic", color, **kw)
-        arc = [(s * bulge * math.cos(a), zc + rz * math.sin(a)) for a in (1.35, 0.9, 0.45)]
-        for j in range(2):
-            d.segment(
-                f"shell_{k}_{j}",
-                "box",
-                (0, *arc[j]),
-                (0, *arc[j + 1]),
-                (length / 2, 0.0018),
-                "plastic",
-                color,
-                **kw,
-            )
+
+        def arc(deg: float, s: int = s) -> tuple[float, float]:
+            a = math.radians(deg)
+            return (s * rx * math.cos(a), rz + rz * math.sin(a))
+
+        grip = [(s * 0.0025, zh), (s * 0.005, zh + 0.006), (s * 0.009, zh + 0.01)]
+        for m, y in enumerate((-1, 1)):
+            yc = y * (length / 2 - tab / 2)
+            for j, (a, b) in enumerate(pairwise(grip)):
+                stroke(f"grip_{k}_{m}_{j}", a, b, yc, tab / 2)
+            d.rod(f"claw_lip_{k}_{m}", t, tab, (*grip[-1][:1], yc, grip[-1][1]), "plastic", color,
+                  axis="y")  # fmt: skip
+        shell = [(s * 0.0025, zh), arc(66), arc(38)]
+        for j, (a, b) in enumerate(pairwise(shell)):
+            stroke(f"shell_{k}_{j}", a, b, 0.0, length / 2, **kw)
         for j in range(teeth):
-            x = -length / 2 + pitch * (j + 0.25 + 0.5 * k)
-            tooth = [(x, s * bulge * math.cos(a), zc + rz * math.sin(a)) for a in (0.45, -0.2)]
-            tooth.append((x, s * bulge * 0.55, zc - rz * 0.92))
-            tooth.append((x, -s * 0.004, 0.0022))
-            _polyline_3(d, f"tooth_{k}_{j}", tooth, pitch * 0.17, color, "capsule")
+            y = -length / 2 + pitch * (j + 0.25 + 0.5 * k)
+            tooth = [arc(38), arc(-6), arc(-55), arc(-105)]
+            for i, (a, b) in enumerate(pairwise(tooth)):
+                stroke(f"tooth_{k}_{j}_{i}", a, b, y, pitch * 0.22)
     return Traits((color,), "plastic", "irregular")
 
 
@@ -501,6 +505,68 @@ def shampoo_bottle(d: Design) -> Traits:
     _flip_cap(d, d.uniform(0.013, min(r, 0.018)), neck + 0.006, cap)
     shape = "cuboid" if half_len > 0.014 else "cylinder"
     return Traits((color, cap), "plastic", shape)
+
+
+def _luma(color: str) -> float:
+    """How light ``color`` looks (Rec. 709 luma of its base sRGB)."""
+    r, g, b = COLORS[color]
+    return 0.2126 * r + 0.7152 * g + 0.0722 * b
+
+
+@revised("shampoo_bottle", 3)
+def shampoo_bottle_3(d: Design) -> Traits:
+    """Revision 3: a tall flattened oval bottle, its broad face towards the reader with a
+    big label printed SHAMPOO, under a wide oval flip-top cap (or, on some, a pump) (the
+    first, its label blank and on the narrow side, read as just a bottle)."""
+    color = d.choice(BRIGHT + ["white", "white", "silver"])
+    cap = d.choice(["white", "black", "silver", color])
+    if color in ("white", "silver"):  # a coloured label, the word in white
+        label = d.choice(["blue", "green", "purple", "black", "red"])
+        ink = "white"
+    else:  # a white label, the word in the bottle's colour (or black on a light one)
+        label = "white"
+        ink = color if _luma(color) < 0.55 else d.choice(["black", "blue", "purple"])
+    h, r = d.uniform(0.14, 0.18), d.uniform(0.012, 0.015)
+    half_len = d.uniform(0.021, 0.027)  # the flat of the broad face, either side of the middle
+    _stadium_y(d, "body", half_len, r, 0.0, h, color, solid_fraction=0.6)
+    sh = d.uniform(0.012, 0.018)
+    d.ellipsoid("shoulder", (r, half_len + r, sh), (0, 0, h), "plastic", color, solid_fraction=0.6)
+    d.box(
+        "front_label",
+        (0.0004, half_len + r * 0.5, h * 0.15),
+        (r + 0.0004, 0, h * 0.55),
+        "paper",
+        label,
+        visual_only=True,
+        texture=Texture("print_shampoo", (ink,)),
+    )
+    if d.rng.random() < 0.75:  # a wide oval flip-top cap on the shoulder
+        cap_r = r * 0.8
+        cap_half = max(0.6 * (half_len + r) - cap_r, 0.002)
+        z0, cap_h = h + sh * 0.55, d.uniform(0.018, 0.024)
+        _stadium_y(d, "cap", cap_half, cap_r, z0, cap_h, cap)
+        seam = "gray" if cap != "gray" else "white"
+        _stadium_y(
+            d,
+            "cap_seam",
+            cap_half,
+            cap_r + 0.0004,
+            z0 + cap_h * 0.62,
+            0.0008,
+            seam,
+            visual_only=True,
+        )
+        d.box(
+            "cap_tab",
+            (0.002, 0.006, 0.0025),
+            (cap_r + 0.0015, 0, z0 + cap_h * 0.62),
+            "plastic",
+            cap,
+        )
+    else:  # a pump on a big bottle
+        d.upright("collar_ring", 0.014, 0.006, h + sh * 0.7, "plastic", cap)
+        _pump_y(d, h + sh * 0.7 + 0.006, cap, nozzle=d.uniform(0.018, 0.026))
+    return Traits((color,) if cap == color else (color, cap), "plastic", "cuboid")
 
 
 @generator(

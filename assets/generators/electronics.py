@@ -1082,3 +1082,98 @@ def vase(d: Design) -> Traits:
         d.wall("neck", opening, t, h - neck_z, neck_z, material, color, segments=14)
     d.interior((opening * 0.68, opening * 0.68), floor_z=floor, rim_z=h)
     return Traits((color,), material, "cylinder" if kind != "flared" else "cone")
+
+
+@revised("vase", 3)
+def vase_3(d: Design) -> Traits:
+    """Revision 3: a vase with a belly and a narrower neck under a flared lip, in glazed
+    ceramic or glass, empty: a bud vase (a little round belly, a long slim neck), a
+    baluster (a tall egg on a foot, a trumpet neck), an amphora (an egg tapering to a small
+    foot, two handles from the neck to the shoulders) or an urn (a wide round belly on a
+    pedestal, a short wide neck). The place for things is down the neck (the first, plain
+    cylinders, cones and square columns, read as cups and tumblers)."""
+    material = d.choice(["ceramic", "ceramic", "glass"])
+    if material == "ceramic":
+        color = d.choice(["white", "blue", "black", "green", "beige", "red", "pink"])
+    else:
+        color = d.choice(["transparent", "transparent", "blue", "green"])
+    kind = d.choice(["bud", "baluster", "amphora", "urn"])
+    t = 0.0035
+    hollow = dict(solid_fraction=0.3)  # a thrown or blown body is a shell
+    if kind == "bud":
+        r = d.uniform(0.026, 0.033)
+        hz = r * d.uniform(0.85, 1.0)
+        foot = 0.007
+        d.upright("foot", r * 0.55, foot, 0.0, material, color)
+        zc = foot + hz * 0.92
+        bore, height = d.uniform(0.007, 0.009), d.uniform(0.13, 0.16)
+        lip_h, flare = d.uniform(0.011, 0.015), d.uniform(0.45, 0.6)
+        shape = "sphere"
+    elif kind == "baluster":
+        r = d.uniform(0.036, 0.043)
+        hz = r * d.uniform(1.25, 1.45)
+        foot = 0.008
+        d.upright("foot", r * 0.6, foot, 0.0, material, color)
+        zc = foot + hz * 0.92
+        bore, height = d.uniform(0.012, 0.015), (foot + 2 * hz) * d.uniform(1.35, 1.5)
+        lip_h, flare = d.uniform(0.016, 0.022), d.uniform(0.55, 0.75)
+        shape = "ellipsoid"
+    elif kind == "amphora":
+        r = d.uniform(0.036, 0.042)
+        hz = r * d.uniform(1.3, 1.5)
+        foot = 0.01
+        d.upright("foot", r * 0.5, foot, 0.0, material, color)
+        low = hz * 0.6  # the lower body tapering to the foot
+        d.ellipsoid(
+            "lower", (r * 0.62, r * 0.62, low), (0, 0, foot + low * 0.92), material, color, **hollow
+        )
+        zc = foot + hz * 1.12
+        bore, height = d.uniform(0.012, 0.015), (foot + 2.2 * hz) * d.uniform(1.28, 1.4)
+        lip_h, flare = d.uniform(0.012, 0.016), d.uniform(0.55, 0.75)
+        shape = "ellipsoid"
+    else:  # an urn on a pedestal
+        r = d.uniform(0.042, 0.048)
+        hz = r * d.uniform(0.85, 0.95)
+        d.upright("foot", r * 0.62, 0.007, 0.0, material, color)
+        d.upright("pedestal", r * 0.34, 0.018, 0.007, material, color)
+        foot = 0.025
+        zc = foot + hz * 0.93
+        bore, height = r * d.uniform(0.48, 0.56), 0.0
+        lip_h, flare = d.uniform(0.012, 0.016), d.uniform(0.7, 0.85)
+        shape = "sphere"
+    d.ellipsoid("belly", (r, r, hz), (0, 0, zc), material, color, **hollow)
+    floor = zc + hz  # the top of the body, under the neck
+    if kind in ("baluster", "amphora"):  # a shoulder narrowing into the neck
+        sr = bore + t + 0.006
+        d.ellipsoid(
+            "shoulder", (sr, sr, hz * 0.3), (0, 0, zc + hz * 0.8), material, color, **hollow
+        )
+        floor = max(floor, zc + hz * 1.1)
+    outer = bore + t
+    sunk = zc + hz * math.sqrt(max(1 - (outer / r) ** 2, 0.0)) - 0.002  # into the body
+    # the hollow neck up to the lip: to the vase's height, or short on an urn
+    neck_top = floor + max(height - floor - lip_h, d.uniform(0.018, 0.026))
+    d.wall("neck", bore, t, neck_top - sunk, sunk, material, color, segments=12)
+    d.wall("lip", bore, t, lip_h, neck_top, material, color, segments=14, flare=flare)
+    rim = neck_top + lip_h
+    colors: tuple[str, ...] = (color,)
+    if material == "ceramic":
+        d.upright("mouth_shadow", bore, 0.001, floor - 0.0005, material, "black", visual_only=True)
+        if d.rng.random() < 0.4:  # a glazed band round the belly
+            band = d.choice([c for c in ("golden", "white", "blue", "black") if c != color])
+            d.ellipsoid(
+                "band", (r * 1.02, r * 1.02, hz * 0.5), (0, 0, zc), material, band, visual_only=True
+            )
+            colors = (color, band)
+    if kind == "amphora":  # two handles from under the lip down to the shoulders
+        for k, s in enumerate((-1, 1)):
+            pts = [
+                (0.0, s * (outer - 0.001), neck_top - 0.004),
+                (0.0, s * (outer + 0.014), neck_top - 0.008),
+                (0.0, s * (outer + 0.017), zc + hz * 0.95),
+                (0.0, s * r * 0.7, zc + hz * 0.72),
+            ]
+            for j in range(3):
+                d.segment(f"handle_{k}_{j}", "capsule", pts[j], pts[j + 1], 0.0032, material, color)
+    d.interior((bore * 0.68, bore * 0.68), floor_z=floor, rim_z=rim)
+    return Traits(colors, material, shape)

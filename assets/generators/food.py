@@ -42,6 +42,37 @@ def lemon(d: Design) -> Traits:
     return Traits((color,), "organic", "ellipsoid")
 
 
+@revised("lemon", 3)
+def lemon_3(d: Design) -> Traits:
+    """Revision 3: a bright yellow lemon lying on its side along y (seen side on from the
+    front): an oval a little longer than wide that tapers at each end, to a pointed nipple
+    at one end and a small stalk end with a brown scar at the other (the first, an
+    egg-like oval that was sometimes green, seen end on, read as a lime)."""
+    color = "yellow"
+    a = d.uniform(0.031, 0.036)  # half the body's length (along y)
+    b = a / d.uniform(1.1, 1.18)  # its half width
+    c = b * 0.96  # its half height (it rests a little flattened)
+    d.ellipsoid("body", (b, a, c), (0, 0, c), "organic", color)
+    for k, s in enumerate((1, -1)):  # the ends taper
+        d.ellipsoid(
+            f"taper_{k}", (b * 0.5, a * 0.5, c * 0.5), (0, s * a * 0.62, c), "organic", color
+        )
+    reach = a * 1.12  # where the tapers end
+    d.ellipsoid("nipple", (0.0042, 0.0065, 0.0042), (0, reach + 0.0012, c), "organic", color)
+    d.ellipsoid("stalk_end", (0.0045, 0.003, 0.0045), (0, -reach + 0.0004, c), "organic", color)
+    d.rod(
+        "stem_scar",
+        0.002,
+        0.001,
+        (0, -reach - 0.0017, c),
+        "organic",
+        "brown",
+        axis="y",
+        visual_only=True,
+    )
+    return Traits((color,), "organic", "ellipsoid")
+
+
 @generator("banana", size=(0.12, 0.22))
 def banana(d: Design) -> Traits:
     color = d.choice(["yellow", "yellow", "green"])

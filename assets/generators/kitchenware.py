@@ -295,76 +295,68 @@ def wire_cutters(d: Design) -> Traits:
 
 @revised("wire_cutters", 3)
 def wire_cutters_3(d: Design) -> Traits:
-    """Revision 3: diagonal side cutters lying a little open on their return spring, laid
-    across the view: a short, dark, pointed head (about as wide as it is long) of two
-    almond jaws opened like a beak, so that a V gap runs from the rivet to the point between
-    their two bright, ground cutting edges; a round boss with a rivet; a bright V spring
-    between the handles; two-tone dipped grips (the first, long straight jaws, read as
-    pliers or a can opener; a small head with its jaws almost shut read as pliers again; a
-    wire held in the jaws read as wire strippers)."""
+    """Revision 3: diagonal side cutters lying across the view, jaws shut: a short, black,
+    pointed head (two almond jaws meeting at the tip) with a bright ground bevel running
+    down each jaw to the straight cutting edge between them, so that the bevels close in a
+    V at the point; a round boss with a bright rivet; two plain dipped grips, a little
+    open (the first, long straight jaws, read as pliers or a
+    can opener; jaws opened like a beak with a spring and two-tone grips as pliers or wire
+    strippers; a wire held in the jaws as wire strippers)."""
     grip = d.choice(["red", "red", "yellow", "red", "orange", "blue"])
-    tip = d.choice(["yellow", "black"]) if grip == "red" else d.choice(["red", "black"])
-    metal = "black"  # a dark oxide head, so that the ground edges shine
-    shine = d.choice(["silver", "white"])  # the ground cutting edges
-    jaw_len, jaw_w = d.uniform(0.033, 0.036), d.uniform(0.0125, 0.0135)
-    handle_len, closed = d.uniform(0.088, 0.096), d.uniform(0.008, 0.01)
-    open_a = math.radians(d.uniform(10.0, 11.5))  # each half turned open by the spring
-    thick = d.uniform(0.011, 0.013)
+    metal, shine = "black", "white"  # a dark oxide head, so that the ground bevels shine
+    jaw_len, half_w = d.uniform(0.032, 0.035), d.uniform(0.0135, 0.0145)
+    handle_len, closed = d.uniform(0.095, 0.1), d.uniform(0.008, 0.01)
+    open_a = math.radians(d.uniform(6.0, 8.0))  # each handle turned a little open
+    thick = d.uniform(0.011, 0.012)
     z = thick / 2
-    r = d.uniform(0.0062, 0.0068)  # the dipped grips' radius
+    r = d.uniform(0.0064, 0.0068)  # the dipped grips' radius
 
-    def turn(x: float, y: float, sign: int) -> tuple[float, float]:
-        """A point of one half, opened by the spring and laid along +y, across the view."""
-        c, s = math.cos(sign * open_a), math.sin(sign * open_a)
-        return (-(x * s + y * c), x * c - y * s)
+    def p(u: float, v: float, h: float) -> tuple[float, float, float]:
+        """The tool's frame (u from the handles to the tip) laid along +y, across the view."""
+        return (-v, u, h)
 
-    d.upright("boss", jaw_w * 0.85, thick, 0.0, "metal", metal)
-    d.upright("rivet", 0.004, thick + 0.0012, 0.0, "metal", "silver")
-    for k, sign in enumerate((-1, 1)):
-        yaw = sign * open_a + math.pi / 2
-        # the jaw: a fat almond cheek from beside the boss to the point on the cutting
-        # edge, and the bright ground cutting edge along its inner side, full height
-        p0 = turn(-0.002, sign * jaw_w * 0.66, sign)
-        p1 = turn(jaw_len * 1.04, sign * jaw_w * 0.02, sign)
+    def turn(u: float, v: float, s: int, h: float) -> tuple[float, float, float]:
+        """A point of the half on side ``s``, turned open about the rivet."""
+        c, sn = math.cos(s * open_a), math.sin(s * open_a)
+        return p(u * c - v * sn, u * sn + v * c, h)
+
+    d.upright("boss", half_w * 0.9, thick, 0.0, "metal", metal)
+    d.upright("rivet", 0.0045, thick + 0.001, 0.0, "metal", shine)
+    # the jaws: two almonds from beside the rivet to the shared point
+    jaws = [((-0.004, s * half_w * 0.55), (jaw_len, 0.0)) for s in (-1, 1)]
+    semi = half_w * 0.55  # the almonds' half width
+    for k, (a0, a1) in enumerate(jaws):
+        d.segment(f"jaw_{k}", "ellipsoid", p(*a0, z), p(*a1, z), (semi, z), "metal", metal)
+
+    def top(u: float, v: float) -> float:
+        """The height of the jaws' top at (u, v)."""
+        high = 0.0
+        for a0, a1 in jaws:
+            half = math.dist(a0, a1) / 2
+            du, dv = ((b - a) / (2 * half) for a, b in zip(a0, a1, strict=True))
+            x = (u - (a0[0] + a1[0]) / 2) * du + (v - (a0[1] + a1[1]) / 2) * dv
+            y = -(u - (a0[0] + a1[0]) / 2) * dv + (v - (a0[1] + a1[1]) / 2) * du
+            high = max(high, z + z * math.sqrt(max(1 - (x / half) ** 2 - (y / semi) ** 2, 0.0)))
+        return high
+
+    for k, s in enumerate((-1, 1)):
+        # the ground bevel down this jaw to the cutting edge, following the jaw's top
+        edge = [
+            (0.005 + (jaw_len * 0.9 - 0.005) * f, s * (0.0036 - 0.003 * f))
+            for f in (0, 0.33, 0.66, 1)
+        ]
+        for j, (b0, b1) in enumerate(zip(edge, edge[1:], strict=False)):
+            d.segment(
+                f"bevel_{k}_{j}", "box", p(*b0, top(*b0) + 0.0006), p(*b1, top(*b1) + 0.0006),
+                (0.0016, 0.0003), "metal", shine, visual_only=True,
+            )  # fmt: skip
+        # the handle of this half lies on the other side of the rivet
+        knee, end = (-0.02, -s * 0.0075), (-handle_len, -s * closed)
         d.segment(
-            f"cheek_{k}", "ellipsoid", (*p0, z), (*p1, z), (jaw_w * 0.52, z * 0.96), "metal", metal
-        )
-        bx, by = turn(jaw_len * 0.46, sign * 0.0015, sign)
-        d.box(
-            f"cutting_edge_{k}",
-            (jaw_len * 0.36, 0.0015, z * 0.9),
-            (bx, by, z),
-            "metal",
-            shine,
-            yaw=yaw,
-        )
-        # the handle of this half lies on the other side of the pivot
-        knee = turn(-0.017, -sign * 0.0068, sign)
-        end = turn(-handle_len, -sign * closed, sign)
-        d.segment(
-            f"shank_{k}",
-            "box",
-            (*turn(-0.006, -sign * 0.0042, sign), z),
-            (*knee, z * 0.9),
-            (0.0035, z * 0.6),
-            "metal",
-            metal,
-        )
-        mid = tuple(a + 0.62 * (b - a) for a, b in zip(knee, end, strict=True))
-        d.segment(f"grip_{k}", "capsule", (*knee, r), (*mid, r), r, "rubber", grip)
-        d.segment(f"grip_end_{k}", "capsule", (*mid, r), (*end, r), r * 1.02, "rubber", tip)
-        # the return spring: a bright wire V from a coil by the pivot to each handle
-        hand = tuple(a + 0.42 * (b - a) for a, b in zip(knee, end, strict=True))
-        d.segment(
-            f"spring_{k}",
-            "box",
-            (0.0, -0.026, r * 1.5),
-            (hand[0] * 0.8, hand[1], r * 1.5),
-            (0.0011, 0.0011),
-            "metal",
-            "silver",
-        )
-    d.upright("spring_coil", 0.003, 0.003, r * 1.5 - 0.0015, "metal", "silver", xy=(0, -0.026))
+            f"shank_{k}", "box", turn(-0.004, -s * 0.0045, s, z), turn(*knee, s, z * 0.9),
+            (0.0042, z * 0.6), "metal", metal,
+        )  # fmt: skip
+        d.segment(f"grip_{k}", "capsule", turn(*knee, s, r), turn(*end, s, r), r, "rubber", grip)
     return Traits((grip, metal), "metal", "irregular")
 
 

@@ -891,62 +891,33 @@ def placemat(d: Design) -> Traits:
 
 @revised("placemat", 3)
 def placemat_3(d: Design) -> Traits:
-    """Revision 3: a woven cotton placemat, a soft rectangle with rounded corners and a
-    contrasting hem, woven with bold bands of colour across both ends, fringed with loose
-    threads at its short ends, a folded cloth napkin lying on one side (the mat printed with
-    a place setting read as an induction cooktop or a certificate, the slatted first mat as a
-    bamboo mat). The interior is the bare cloth beside the napkin."""
-    material = "fabric"
-    color = d.choice(["beige", "beige", "white", "gray", "blue", "green", "red", "orange"])
-    band = d.choice([c for c in ("red", "blue", "green", "brown", "orange", "white") if c != color])
-    napkin = d.choice([c for c in ("white", band, "beige") if c != color])
-    hx, hy = d.uniform(0.13, 0.145), d.uniform(0.095, 0.11)
-    thick, r = 0.003, 0.02
+    """Revision 3: a table placemat printed with a place setting: a thin wipe-clean vinyl
+    (or woven cotton) rectangle with rounded corners, long across the diner's view, printed
+    in one ink with a plate (two rings) between a fork and a knife (a woven, fringed mat
+    read as a rug, a mat with the setting as stacked discs as an induction cooktop). The
+    interior is the printed plate."""
+    material = d.choice(["plastic", "plastic", "fabric"])
+    color = d.choice(["red", "blue", "green", "orange", "white", "beige", "pink", "yellow"])
+    light = color in ("white", "beige", "yellow")
+    ink = d.choice(["blue", "red", "green", "brown"]) if light else "white"
+    hx, hy = d.uniform(0.09, 0.105), d.uniform(0.13, 0.15)
+    thick, r = d.uniform(0.002, 0.003), 0.018
     d.box("slab", (hx - r, hy, thick / 2), (0, 0, thick / 2), material, color)
     d.box("slab_ends", (hx, hy - r, thick / 2), (0, 0, thick / 2), material, color)
     for k, (sx, sy) in enumerate(((-1, -1), (-1, 1), (1, -1), (1, 1))):
         d.upright(f"corner_{k}", r, thick, 0.0, material, color, xy=(sx * (hx - r), sy * (hy - r)))
-    kw = dict(visual_only=True)
-    z = thick + 0.0002
-    # woven bands of colour across the mat near each short end: a wide band and a thin one
-    wide, thin = d.uniform(0.008, 0.012), d.uniform(0.0025, 0.0035)
-    for k, sign in enumerate((-1, 1)):
-        x0 = sign * (hx - 0.022)
-        d.box(f"band_{k}", (wide, hy - 0.002, 0.0002), (x0, 0, z), material, band, **kw)
-        x1 = x0 - sign * (wide + thin + 0.006)
-        d.box(f"band_thin_{k}", (thin, hy - 0.002, 0.0002), (x1, 0, z), material, band, **kw)
-    # loose threads of fringe at the short ends
-    threads = 14
-    for k, sign in enumerate((-1, 1)):
-        for j in range(threads):
-            y = -hy + r * 0.6 + j * (2 * hy - 1.2 * r) / (threads - 1)
-            d.box(
-                f"fringe_{k}_{j}",
-                (0.0055, 0.0012, 0.0006),
-                (sign * (hx + 0.0045), y, 0.0006),
-                material,
-                color,
-                **kw,
-            )
-    # a folded napkin lying on the +y side, its rounded fold towards the middle
-    nx, ny, nt = d.uniform(0.05, 0.06), d.uniform(0.028, 0.034), 0.005
-    ncy = hy - 0.012 - ny
-    d.box("napkin", (nx, ny, nt / 2), (0, ncy, thick + nt / 2), material, napkin)
-    d.rod("napkin_fold", nt / 2, 2 * nx, (0, ncy - ny, thick + nt / 2), material, napkin)
+    # the print over the top (its square corners inside the rounded ones): the diner sits
+    # at +x, the fork on their left (-y), the knife on their right
+    inset = 0.35 * r
+    pattern = "place_setting_woven" if material == "fabric" else "place_setting"
     d.box(
-        "napkin_edge",
-        (nx, 0.0015, 0.0002),
-        (0, ncy + ny * 0.45, thick + nt + 0.0002),
+        "place_setting",
+        (hx - inset, hy - inset, 0.0001),
+        (0, 0, thick - 0.00007),  # sunk into the mat but for its top, so no edge shows
         material,
-        band if napkin != band else color,
-        **kw,
+        color,
+        visual_only=True,
+        texture=Texture(pattern, (ink,)),
     )
-    free_y0 = -hy + 0.012
-    free_y1 = ncy - ny - 0.006
-    d.interior(
-        (hx - 0.045, (free_y1 - free_y0) / 2),
-        floor_z=thick,
-        rim_z=thick + 0.003,
-        center=(0.0, (free_y0 + free_y1) / 2),
-    )
-    return Traits(tuple(dict.fromkeys((color, band))), material, "flat")
+    d.interior((hx - 0.025, hx - 0.025), floor_z=thick, rim_z=thick + 0.003)
+    return Traits((color,), material, "flat")
