@@ -621,6 +621,94 @@ PATTERNS.update(
 )
 NEEDED_INKS.update(tortoise=0, place_setting=1, place_setting_woven=1)
 
+
+def _sparkle(img: np.ndarray, center: tuple[float, float], size: float, ink) -> None:
+    """A four-pointed sparkle (a clean shine) ``size`` pixels from its centre to a tip."""
+    cx, cy = center
+    pinch = 0.22 * size
+    pts = [
+        (cx, cy - size),
+        (cx + pinch, cy - pinch),
+        (cx + size, cy),
+        (cx + pinch, cy + pinch),
+        (cx, cy + size),
+        (cx - pinch, cy + pinch),
+        (cx - size, cy),
+        (cx - pinch, cy - pinch),
+    ]
+    cv2.fillPoly(img, [np.array(pts, np.int32)], _bgr(ink), cv2.LINE_AA)
+
+
+#: A molar's outline (the tooth of a dental sign: a crown with two cusps, two roots),
+#: x across and y down, both -1..1; rounded off by ``_smooth``.
+_MOLAR = [
+    (-0.98, -0.5), (-0.8, -0.95), (-0.42, -1.0), (0.0, -0.78), (0.42, -1.0), (0.8, -0.95),
+    (0.98, -0.5), (0.9, 0.05), (0.72, 0.5), (0.66, 0.98), (0.4, 1.0), (0.26, 0.5),
+    (0.0, 0.3), (-0.26, 0.5), (-0.4, 1.0), (-0.66, 0.98), (-0.72, 0.5), (-0.9, 0.05),
+]  # fmt: skip
+
+
+def _smooth(points: list[tuple[float, float]], rounds: int = 3) -> np.ndarray:
+    """A closed polygon rounded off by Chaikin's corner cutting."""
+    pts = np.asarray(points, float)
+    for _ in range(rounds):
+        nxt = np.roll(pts, -1, axis=0)
+        pts = np.stack([0.75 * pts + 0.25 * nxt, 0.25 * pts + 0.75 * nxt], axis=1).reshape(-1, 2)
+    return pts
+
+
+def _molar(img: np.ndarray, center: tuple[float, float], radius: float, ink) -> None:
+    """A molar ``radius`` pixels to either side (and up and down) of ``center``."""
+    pts = np.asarray(center) + radius * _smooth(_MOLAR)
+    cv2.fillPoly(img, [np.round(pts).astype(np.int32)], _bgr(ink), cv2.LINE_AA)
+
+
+def _tooth_shine(img, inks, motif) -> None:
+    """A tooth in the first ink as wide as the image allows, a sparkle at its shoulder and
+    a smaller one across it in the last ink: a clean-teeth print."""
+    h, w = img.shape[:2]
+    r = 0.44 * min(w, 0.55 * h)
+    c = (w * 0.5, h * 0.56)
+    _molar(img, c, r, COLORS[inks[0]])
+    _sparkle(img, (c[0] + 0.62 * r, c[1] - 1.5 * r), 0.42 * r, COLORS[inks[-1]])
+    _sparkle(img, (c[0] - 0.55 * r, c[1] - 1.4 * r), 0.24 * r, COLORS[inks[-1]])
+
+
+def _toothbrush(img, inks, motif) -> None:
+    """A toothbrush seen side on, along the image's longer side: standing head up in a
+    tall image (its bristles to the right), lying head left in a wide one (bristles up);
+    the handle in the first ink, the tufts of bristles in the last."""
+    h, w = img.shape[:2]
+    tall = h >= w
+    length, across = (h, w) if tall else (w, h)
+    unit = min(0.78 * length, 3.8 * across)  # the brush's length
+    start = (length - unit) / 2
+    axis = (across - 0.22 * unit) / 2 + 0.045 * unit  # the handle's middle line
+
+    def at(s: float, t: float) -> tuple[int, int]:
+        """The pixel ``s`` brush lengths from the head's tip and ``t`` across from the
+        handle's middle line (towards the bristles)."""
+        a, b = start + s * unit, axis + t * unit
+        return (int(round(b)), int(round(a))) if tall else (int(round(a)), int(round(across - b)))
+
+    handle, bristle = _bgr(COLORS[inks[0]]), _bgr(COLORS[inks[-1]])
+    aa = cv2.LINE_AA
+    profile = [(0.0, 0.04), (0.27, 0.04), (0.36, 0.022), (0.5, 0.028), (0.62, 0.048), (0.97, 0.045)]
+    edge = [at(s, hw) for s, hw in profile] + [at(s, -hw) for s, hw in profile[::-1]]
+    cv2.fillPoly(img, [np.array(edge, np.int32)], handle, aa)
+    for s, hw in (profile[0], profile[-1]):  # round ends
+        cv2.circle(img, at(s, 0.0), max(1, int(hw * unit)), handle, -1, aa)
+    tufts, root, tip = 5, 0.03, 0.17
+    pitch = 0.25 / tufts
+    for k in range(tufts):
+        s = 0.015 + k * pitch
+        quad = [at(s, root), at(s + 0.72 * pitch, root), at(s + 0.72 * pitch, tip), at(s, tip)]
+        cv2.fillPoly(img, [np.array(quad, np.int32)], bristle, aa)
+
+
+PATTERNS.update(tooth_shine=_tooth_shine, toothbrush=_toothbrush)
+NEEDED_INKS.update(tooth_shine=1, toothbrush=1)
+
 #: Every pattern that prints words -> the key of its words in ``WORDS``.
 PRINTED_WORDS: dict[str, str] = {
     **{name: name.split("_", 1)[1] for name in WORD_PATTERNS},

@@ -35,6 +35,7 @@ REVISED_3_BATH: dict[str, tuple[str, str | None]] = {
     "sponge": ("pores_x0", None),  # porous foam under a scourer
     "beverage_bottle": ("neck_ring", None),  # a soft-drink bottle labelled COLA / SODA
     "shampoo_bottle": ("front_label", None),  # a flat bottle printed SHAMPOO, a flip cap
+    "mouthwash_cup": ("tooth_print_front", None),  # a panelled tumbler: tooth, toothbrushes
 }
 #: ... groceries and stationery ...
 REVISED_3_DESK: dict[str, tuple[str, str | None]] = {
@@ -65,6 +66,8 @@ REVISED_3_DESK: dict[str, tuple[str, str | None]] = {
     "tomato": ("lobe_0", None),  # red lobes round a dimple, a green star calyx
     "biscuit": ("cookie_dome", None),  # a chocolate-chip cookie (or COOKIES pack)
     "lemon": ("nipple", None),  # yellow, longer than wide, tapering to a pointed nipple
+    "apple": ("lobe_0_0", None),  # wider than tall, the stalk sunk in a dimple
+    "banana": ("blossom_tip", "black"),  # five-sided, curved, a stalk and a dark stub
 }
 #: ... electronics, bedroom, kitchenware, living-room, receptacles and tools.
 REVISED_3_ROOM: dict[str, tuple[str, str | None]] = {
@@ -86,6 +89,7 @@ REVISED_3_ROOM: dict[str, tuple[str, str | None]] = {
     "phone_stand": ("hinge_top", None),  # an empty folding stand: back plate, lip, hinges
     "stamp": ("die", "red"),  # a knob-handled wooden stamp on a red rubber die
     "vase": ("belly", None),  # a belly under a narrower neck and a flared lip
+    "jewelry_box": ("ring_roll_0", None),  # ring rolls holding rings, a pearl necklace
 }
 #: The reprinted categories of revision 3: their part shows it by printing words (a
 #: pattern of ``textures.PRINTED_WORDS``) where the same part drew a wordmark before.

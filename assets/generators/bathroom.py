@@ -6,8 +6,8 @@ import math
 from itertools import pairwise
 
 from ..design import Design, Point, Traits
-from ..parts import X_TO_Z, axis_angle_quat
-from ..textures import Texture
+from ..parts import X_TO_Z, axis_angle_quat, quat_mul
+from ..textures import FRONT, Texture
 from ..vocab import COLORS
 from .desktop import BRIGHT
 from .registry import generator, revised
@@ -201,6 +201,109 @@ def mouthwash_cup(d: Design) -> Traits:
     d.wall("band", top_r, t, band_h, h - band_h, material, band, flare=flare)
     d.interior((r * 0.7, r * 0.7), floor_z=base, rim_z=h)
     return Traits((color, band), material, "cylinder")
+
+
+def _panelled_wall(
+    d: Design,
+    name: str,
+    radius: float,
+    t: float,
+    height: float,
+    z0: float,
+    color: str,
+    panels: int,
+    flare: float,
+    turn: float,
+) -> None:
+    """``Design.wall`` in plastic, of ``panels`` flat panels ``{name}_{k}``, panel k facing
+    the azimuth ``turn`` + 2 pi k / ``panels`` (so that one can face the front)."""
+    slant = height / math.cos(flare)
+    outer = radius + t + math.sin(flare) * slant  # widest ring: close it there
+    chord = 2 * outer * math.tan(math.pi / panels) * 1.02
+    r = radius + t / 2 + math.sin(flare) * slant / 2
+    for k in range(panels):
+        a = turn + 2 * math.pi * k / panels
+        d.add(
+            f"{name}_{k}",
+            "box",
+            (t / 2, chord / 2, slant / 2),
+            (r * math.cos(a), r * math.sin(a), z0 + height / 2),
+            "plastic",
+            color,
+            quat=quat_mul(axis_angle_quat((0, 0, 1), a), axis_angle_quat((0, 1, 0), flare)),
+        )
+
+
+def _facet_print(
+    d: Design,
+    name: str,
+    angle: float,
+    face: tuple[float, float, float],
+    span: tuple[float, float],
+    width: float,
+    color: str,
+    texture: Texture,
+) -> None:
+    """A print on one flat panel of a wall (``_panelled_wall``): the panel facing azimuth
+    ``angle``, ``face`` = (the distance of its outer face from the axis at the wall's foot,
+    the z of the foot, the flare), printed from z = ``span[0]`` to ``span[1]`` up its slant,
+    ``width`` wide (no mass)."""
+    apothem, z_foot, flare = face
+    z0, z1 = span
+    zc = (z0 + z1) / 2
+    inset = 0.00035  # the box's centre under the face: its front a hair proud of it
+    out = apothem + math.tan(flare) * (zc - z_foot) - inset * math.cos(flare)
+    slant = (z1 - z0) / math.cos(flare)
+    d.add(
+        name,
+        "box",
+        (0.0004, width / 2, slant / 2),
+        (out * math.cos(angle), out * math.sin(angle), zc + inset * math.sin(flare)),
+        "plastic",
+        color,
+        quat=quat_mul(axis_angle_quat((0, 0, 1), angle), axis_angle_quat((0, 1, 0), flare)),
+        visual_only=True,
+        texture=texture,
+    )
+
+
+@revised("mouthwash_cup", 3)
+def mouthwash_cup_3(d: Design) -> Traits:
+    """Revision 3: a sturdy plastic toothbrush tumbler: eight thick flat panels flaring a
+    little from a recessed foot round a heavy floor, the front panel printed with a tooth
+    and its sparkles, the panels either side with a standing toothbrush, and the same on
+    the back (the first, a plain cup with a coloured band round the rim, read as a cup, a
+    glass or a paper cup)."""
+    color = d.choice(PASTEL)
+    accent = d.choice(["blue", "blue", "green", "purple"])
+    if color in ("white", "beige", "yellow"):  # printed in one colour
+        tooth = shine = handle = accent
+        bristle = "blue" if accent != "blue" else d.choice(["green", "pink"])
+    else:  # a white tooth, white or yellow sparkles, a toothbrush that stands out
+        tooth, shine = "white", "white" if color == "pink" else "yellow"
+        handle, bristle = ("white", "blue") if color in ("pink", "green") else ("yellow", "white")
+    segments = 8
+    r, t = d.uniform(0.028, 0.032), 0.005
+    h, flare = d.uniform(0.095, 0.11), d.uniform(0.04, 0.07)
+    foot, base = 0.004, d.uniform(0.012, 0.016)
+    d.upright("foot", r + t - 0.003, foot, 0.0, "plastic", color)
+    d.upright("base", r + t * 0.5, base, foot, "plastic", color)  # the heavy floor
+    turn = FRONT - 2 * math.pi / segments  # panel 1 faces the front
+    _panelled_wall(d, "wall", r, t, h - foot, foot, color, segments, flare, turn)
+    face = (r + t, foot, flare)  # the outer face of a panel at its foot
+    # the prints run up the whole panel, their top edge tucked under the rim's
+    span = (foot + 0.001, h - 0.0008)
+    width = 2 * (r + t) * math.tan(math.pi / segments) * 0.92
+    shine_print = Texture("tooth_shine", (tooth, shine))
+    brush_print = Texture("toothbrush", (handle, bristle))
+    for side, k0 in (("front", 1), ("back", 5)):
+        prints = ((k0 - 1, "brush_l", brush_print), (k0, "tooth", shine_print))
+        prints += ((k0 + 1, "brush_r", brush_print),)
+        for k, what, texture in prints:
+            angle = turn + 2 * math.pi * k / segments
+            _facet_print(d, f"{what}_print_{side}", angle, face, span, width, color, texture)
+    d.interior((r * 0.7, r * 0.7), floor_z=foot + base, rim_z=h)
+    return Traits((color,), "plastic", "cylinder")
 
 
 @generator("comb", size=(0.11, 0.2), synonyms=("comb", "hair comb"))

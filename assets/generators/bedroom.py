@@ -189,6 +189,97 @@ def jewelry_box(d: Design) -> Traits:
     return Traits((color, lining), material, "cuboid")
 
 
+@revised("jewelry_box", 3)
+def jewelry_box_3(d: Design) -> Traits:
+    """Revision 3: an open jewellery box, its hinged lid leaning back with a mirror in it,
+    lined in velvet: at the back, velvet ring rolls nearly up to the rim, two or three gold
+    or silver rings with a big gem standing in the slits between them; in front, past a low
+    divider, a pearl or gold bead necklace coiled on a velvet cushion (an empty box with a
+    mirror in its lid and a dark floor read as a wooden box)."""
+    material, color = d.choice(
+        [
+            ("wood", "brown"),
+            ("wood", "beige"),
+            ("leather", "black"),
+            ("leather", "red"),
+            ("leather", "pink"),
+            ("plastic", "white"),
+            ("leather", "blue"),
+        ]
+    )
+    velvet = d.choice([c for c in ("red", "purple", "black", "blue") if c != color])
+    hx, hy, h = d.uniform(0.072, 0.085), d.uniform(0.04, 0.047), d.uniform(0.046, 0.052)
+    t = 0.006
+    floor = d.open_box("base", (hx, hy), h, t, material, color, full="y")
+    inner_x, inner_y = hx - t, hy - t
+    # the ring rolls at the back (-x): plush velvet rolls along x on a velvet block
+    rolls, td = 4, 0.004
+    rr = inner_y / rolls
+    x0, x1 = -inner_x, -inner_x + d.uniform(0.05, 0.058)
+    top = h - 0.003  # the rolls' tops, just under the rim
+    block = top - 1.9 * rr
+    mid = ((x0 + x1) / 2, 0)
+    d.slab(
+        "roll_block", ((x1 - x0) / 2, inner_y, (block - floor) / 2), floor, "foam", velvet, xy=mid
+    )
+    for j in range(rolls):
+        center = (mid[0], -inner_y + rr * (2 * j + 1), block + 0.9 * rr)
+        d.rod(f"ring_roll_{j}", rr, x1 - x0, center, "foam", velvet, capsule=True)
+    # rings standing in the slits between the rolls, their gems up
+    metal = d.choice(["golden", "golden", "silver"])
+    count = d.choice([2, 3])
+    slits = [int(k) for k in d.rng.permutation(rolls - 1)[:count]]
+    for k, slit in enumerate(slits):
+        y = -inner_y + rr * 2 * (slit + 1)
+        x = x0 + (x1 - x0) * (k + 0.5) / count
+        ring = d.uniform(0.0085, 0.0095)
+        zc = top - ring * 0.1
+        angles = [math.radians(-30 + 240 * s / 5) for s in range(6)]
+        points = [(x, y + ring * math.cos(a), zc + ring * math.sin(a)) for a in angles]
+        for s in range(5):
+            d.segment(
+                f"ring_{k}_{s}",
+                "capsule",
+                points[s],
+                points[s + 1],
+                0.0014,
+                "metal",
+                metal,
+                visual_only=True,
+            )
+        gem = d.choice(["red", "blue", "green", "purple", "transparent"])
+        size = d.uniform(0.0034, 0.004)
+        pos = (x, y, zc + ring + size * 0.6)
+        stone = "glass" if gem == "transparent" else "stone"
+        d.sphere(f"gem_{k}", size, pos, stone, gem, visual_only=True)
+    # a low divider, and in front the necklace coiled on a velvet cushion
+    d.slab("divider", (td / 2, inner_y, 0.007), floor, material, color, xy=(x1 + td / 2, 0))
+    x0, x1 = x1 + td, inner_x
+    rim = h - 0.031  # the cushion: the compartment stays deep enough to put things in
+    mid = ((x0 + x1) / 2, 0)
+    d.slab("cushion", ((x1 - x0) / 2, inner_y, (rim - floor) / 2), floor, "foam", velvet, xy=mid)
+    pearl, bead = d.choice([("white", 0.0035), ("golden", 0.003)])
+    ax, ay = (x1 - x0) / 2 - bead - 0.004, inner_y - bead - 0.004
+    beads = min(20, int(math.pi * (ax + ay) * 0.85 / (2.05 * bead)))
+    gap = d.uniform(0, 2 * math.pi)  # where the clasp opens the loop
+    look = ("stone", "white") if pearl == "white" else ("metal", "golden")
+    for k in range(beads):
+        a = gap + 0.3 + (2 * math.pi - 0.6) * k / (beads - 1)
+        pos = (mid[0] + ax * math.cos(a), ay * math.sin(a), rim + bead)
+        d.sphere(f"bead_{k}", bead, pos, *look, visual_only=True)
+    d.box(
+        "clasp",
+        (0.006, 0.001, 0.005),
+        (0, hy + 0.001, h - 0.006),
+        "metal",
+        "golden",
+        visual_only=True,
+    )
+    _open_lid(d, "lid", hx, hy, 0.008, (0, -hy + 0.004, h), material, color, mirror=True)
+    d.interior((ax, ay), floor_z=rim, rim_z=h, center=mid)
+    return Traits((color, velvet), material, "cuboid")
+
+
 @generator("glasses_case", size=(0.14, 0.19), synonyms=("glasses case", "spectacle case"))
 def glasses_case(d: Design) -> Traits:
     material, color, fill = d.choice(

@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 
 from ..design import Design, Traits
-from ..parts import X_TO_Z, axis_angle_quat
+from ..parts import X_TO_Z, axis_angle_quat, quat_mul
 from ..textures import Texture
 from .registry import generator, revised
 
@@ -29,6 +29,52 @@ def apple(d: Design) -> Traits:
     r = d.uniform(0.03, 0.037)
     d.ellipsoid("body", (r, r, r * d.uniform(0.82, 0.92)), (0, 0, r), "organic", color)
     _stem(d, r * 1.85, d.uniform(0.012, 0.02), leaf=d.rng.random() < 0.6)
+    return Traits((color,), "organic", "sphere")
+
+
+@revised("apple", 3)
+def apple_3(d: Design) -> Traits:
+    """Revision 3: a smooth red or green apple, wider than tall: broad shoulders round a
+    dimple at the top with the stalk sunk in it, tapering to a smaller dimpled base (the
+    first, a faceted ball, read as a pear or an Asian pear when yellow with a leaf)."""
+    color = d.choice(["red", "red", "green"])
+    r = d.uniform(0.033, 0.037)  # half the width
+    # the body: rings of smooth spheres round the axis, (ring radius, height, sphere radius)
+    # in half widths, from the shoulders (their inner sides meeting round the dimple) down
+    # to a narrower base that rests on a dimpled ring
+    rings = ((0.38, 1.1, 0.62), (0.34, 0.9, 0.6), (0.29, 0.7, 0.55), (0.22, 0.52, 0.46))
+    squat = d.uniform(0.94, 1.04)  # taller or squatter
+    fill = 0.1  # the spheres overlap: the union holds about a tenth of their volume
+    turn = d.uniform(0, math.pi)
+    for j, (ring, z, s) in enumerate(rings):
+        for k in range(12):
+            a = turn + 2 * math.pi * k / 12
+            center = (r * ring * math.cos(a), r * ring * math.sin(a), r * (0.5 + (z - 0.5) * squat))
+            d.sphere(f"lobe_{j}_{k}", r * s, center, "organic", color, solid_fraction=fill)
+    top_z, s, ring = r * (0.5 + 0.6 * squat), r * 0.62, r * 0.38
+    height = top_z + s
+    # a disc hidden at the widest, where fingers close round the apple
+    d.upright("core", r - 0.003, 0.006, top_z - 0.003, "organic", color, solid_fraction=fill)
+    dimple = top_z + math.sqrt(s * s - ring * ring)  # where the shoulders meet on the axis
+    # the stalk, sunk in the dimple and leaning a little
+    length, tilt = d.uniform(0.016, 0.022), d.uniform(0.12, 0.35)
+    quat = quat_mul(axis_angle_quat((0, 1, 0), tilt), X_TO_Z)
+    root = dimple - 0.004
+    center = (math.sin(tilt) * length / 2, 0.0, root + math.cos(tilt) * length / 2)
+    d.add("stalk", "cylinder", (0.0018, length / 2), center, "organic", "brown", quat=quat)
+    if d.rng.random() < 0.35:  # a leaf on the stalk, lying back over the shoulder
+        yaw = d.uniform(2.2, 4.0)
+        reach = 0.017
+        pos = (reach * math.cos(yaw), reach * math.sin(yaw), height + 0.001)
+        d.add(
+            "apple_leaf",
+            "ellipsoid",
+            (0.016, 0.007, 0.0012),
+            pos,
+            "organic",
+            "green",
+            quat=quat_mul(axis_angle_quat((0, 0, 1), yaw), axis_angle_quat((0, 1, 0), 0.2)),
+        )
     return Traits((color,), "organic", "sphere")
 
 
@@ -97,6 +143,149 @@ def banana(d: Design) -> Traits:
     tip = (arc * math.sin(sweep / 2 + 0.05), arc * (1 - math.cos(sweep / 2 + 0.05)), radius)
     d.sphere("tip", radius * 0.45, tip, "organic", "brown")
     return Traits((color,), "organic", "elongated")
+
+
+#: A banana's half thickness (the apothem of its five-sided section) at the joints of its
+#: body, in parts of the thickest, from the blossom tip to the neck before the stalk.
+BANANA_TAPER = (0.36, 0.66, 0.86, 0.97, 1.0, 0.99, 0.93, 0.8, 0.6)
+
+
+def _matrix_quat(x, y, z) -> tuple[float, float, float, float]:
+    """The rotation (w, x, y, z) that turns the local axes into the orthonormal ``x``, ``y``,
+    ``z``."""
+    m = ((x[0], y[0], z[0]), (x[1], y[1], z[1]), (x[2], y[2], z[2]))
+    w = math.sqrt(max(1.0 + m[0][0] + m[1][1] + m[2][2], 1e-12)) / 2
+    if w > 0.1:
+        return (
+            w,
+            (m[2][1] - m[1][2]) / (4 * w),
+            (m[0][2] - m[2][0]) / (4 * w),
+            (m[1][0] - m[0][1]) / (4 * w),
+        )
+    k = max(range(3), key=lambda i: m[i][i])
+    i, j = (k + 1) % 3, (k + 2) % 3
+    s = math.sqrt(max(1.0 + m[k][k] - m[i][i] - m[j][j], 1e-12)) * 2
+    q = [0.0, 0.0, 0.0, 0.0]
+    q[0] = (m[j][i] - m[i][j]) / s
+    q[1 + k] = s / 4
+    q[1 + i] = (m[i][k] + m[k][i]) / s
+    q[1 + j] = (m[j][k] + m[k][j]) / s
+    return tuple(q)
+
+
+def _loft(d: Design, name: str, joints, color: str, colors=None) -> None:
+    """A five-sided prism bent and tapered along ``joints`` ((point, horizontal heading,
+    apothem) on its axis): between each two joints, five flat face slabs half the apothem
+    thick from section to section (a flat face down, a ridge on top), so that the faces run
+    on without steps; ``colors`` gives a colour per span."""
+
+    def face(point, heading, apothem, i):
+        side = (-math.sin(heading), math.cos(heading))
+        t = 2 * math.pi * i / 5  # face 0 faces down
+        n = (side[0] * math.sin(t), side[1] * math.sin(t), -math.cos(t))
+        return tuple(p + apothem * v for p, v in zip(point, n, strict=True)), n
+
+    for k in range(len(joints) - 1):
+        (p0, h0, a0), (p1, h1, a1) = joints[k], joints[k + 1]
+        apothem = (a0 + a1) / 2
+        width, thick = 2 * apothem * math.tan(math.pi / 5), apothem / 2
+        for i in range(5):
+            q0, n0 = face(p0, h0, a0, i)
+            q1, n1 = face(p1, h1, a1, i)
+            u = [b - a for a, b in zip(q0, q1, strict=True)]
+            length = math.sqrt(sum(v * v for v in u))
+            u = [v / length for v in u]
+            n = [a + b for a, b in zip(n0, n1, strict=True)]
+            dot = sum(a * b for a, b in zip(n, u, strict=True))
+            z = [a - dot * b for a, b in zip(n, u, strict=True)]
+            norm = math.sqrt(sum(v * v for v in z))
+            z = [v / norm for v in z]
+            y = (z[1] * u[2] - z[2] * u[1], z[2] * u[0] - z[0] * u[2], z[0] * u[1] - z[1] * u[0])
+            center = [(a + b) / 2 - c * thick / 2 for a, b, c in zip(q0, q1, z, strict=True)]
+            d.add(
+                f"{name}_{k}_{i}",
+                "box",
+                (length / 2 + 0.0003, width / 2, thick / 2),
+                center,
+                "organic",
+                colors[k] if colors else color,
+                quat=_matrix_quat(u, y, z),
+            )
+
+
+@revised("banana", 3)
+def banana_3(d: Design) -> Traits:
+    """Revision 3: a banana lying on its side along y: a curved, angular fruit of five flat
+    sides with ridges between them, thick in the middle and tapering to a dark blossom tip
+    at one end and through a narrow neck into a tapered five-sided stalk ending in a dark
+    cut stub at the other; ripe yellow, yellow freckled with brown, or yellow still green at
+    both ends (the first, smooth capsules, read as a cucumber or a courgette when green)."""
+    ripeness = d.choice(["yellow", "yellow", "spotted", "spotted", "green_ends"])
+    color = "yellow"
+    ends = "green" if ripeness == "green_ends" else color
+    thick = d.uniform(0.0145, 0.0175)  # the thickest apothem
+    arc = d.uniform(0.1, 0.13)  # radius of the curve
+    sweep = d.uniform(0.95, 1.15)
+    n = len(BANANA_TAPER) - 1
+
+    def at(a: float) -> tuple[tuple[float, float], float]:
+        """The point on the arc at angle ``a`` and the heading there: along y, the ends
+        towards +x (seen from the front, the whole curve shows)."""
+        return (arc * (1 - math.cos(a)), arc * math.sin(a)), math.atan2(math.cos(a), math.sin(a))
+
+    joints = []
+    for k, taper in enumerate(BANANA_TAPER):
+        (x, y), heading = at(-sweep / 2 + sweep * k / n)
+        apothem = thick * taper
+        joints.append(((x, y, apothem), heading, apothem))
+    spans = [ends if k in (0, n - 1) else color for k in range(n)]
+    _loft(d, "side", joints, color, spans)
+    # the stalk, straight on from the neck, narrowing and then slimmer still
+    (x, y, z), heading, neck = joints[-1]
+    ahead = (math.cos(heading), math.sin(heading))
+    stalk = thick * 0.34
+    length = d.uniform(0.016, 0.022)
+    stalk_joints = [joints[-1]]
+    for dist, apothem in ((0.007, stalk * 1.05), (length, stalk)):
+        stalk_joints.append(((x + ahead[0] * dist, y + ahead[1] * dist, z), heading, apothem))
+    _loft(d, "stalk", stalk_joints, ends)
+    end = stalk_joints[-1][0]
+    d.add(
+        "stub",
+        "cylinder",
+        (stalk * 1.12, 0.0018),
+        (end[0] + ahead[0] * 0.0012, end[1] + ahead[1] * 0.0012, z),
+        "organic",
+        "brown",
+        quat=axis_angle_quat((0, 0, 1), heading),
+    )
+    # the blossom tip: a dark nub on the thin end
+    (x, y, z), heading, tip = joints[0]
+    back = (-math.cos(heading), -math.sin(heading))
+    d.add(
+        "blossom_tip",
+        "ellipsoid",
+        (0.005, tip * 0.8, tip * 0.8),
+        (x + back[0] * 0.0015, y + back[1] * 0.0015, z),
+        "organic",
+        "black",
+        quat=axis_angle_quat((0, 0, 1), heading),
+    )
+    if ripeness == "spotted":  # brown freckles on the upper faces
+        for k in range(d.choice([4, 5, 6])):
+            j = d.uniform(1.0, n - 1.5)
+            (p, heading, apothem) = joints[int(j)]
+            t = 2 * math.pi * d.choice([2, 3, 1, 4]) / 5
+            side = (-math.sin(heading), math.cos(heading))
+            along = (j - int(j)) * sweep / n * arc
+            pos = (
+                p[0] + side[0] * math.sin(t) * apothem + math.cos(heading) * along,
+                p[1] + side[1] * math.sin(t) * apothem + math.sin(heading) * along,
+                p[2] - math.cos(t) * apothem,
+            )
+            size = d.uniform(0.0015, 0.0025)
+            d.sphere(f"freckle_{k}", size, pos, "organic", "brown", visual_only=True)
+    return Traits((color,) if ends == color else (color, ends), "organic", "elongated")
 
 
 @generator("tomato", size=(0.05, 0.09))
@@ -189,17 +378,19 @@ def egg(d: Design) -> Traits:
 
 @revised("egg", 3)
 def egg_3(d: Design) -> Traits:
-    """Revision 3: a whole egg standing in an egg cup, its narrow end up: blunt below,
-    tapering to a rounded point (the first, a plain ellipsoid lying on its side, read as a
-    kiwi or a coconut when brown)."""
+    """Revision 3: a whole egg standing in a short, low egg cup, its narrow end up: blunt
+    below, tapering to a rounded point, nearly all of it above the cup's flared rim (the
+    first, a plain ellipsoid lying on its side, read as a kiwi or a coconut when brown; a
+    tall cup holding half the egg, as an egg cup)."""
     color = d.choice(["white", "beige", "brown"])
     cup = d.choice([c for c in ("white", "white", "yellow", "blue", "red", "green") if c != color])
     r = d.uniform(0.0175, 0.0195)
-    d.upright("cup_foot", r * 0.95, 0.0035, 0.0, "ceramic", cup)
-    d.upright("cup_stem", r * 0.45, 0.007, 0.0035, "ceramic", cup)
-    base = 0.0105
-    d.upright("cup_floor", r * 0.85, 0.003, base, "ceramic", cup)
-    d.wall("cup", r * 0.88, 0.0025, r * 0.95, base, "ceramic", cup, segments=20, flare=0.15)
+    d.upright("cup_foot", r * 0.9, 0.0025, 0.0, "ceramic", cup)
+    d.upright("cup_stem", r * 0.5, 0.003, 0.0025, "ceramic", cup)
+    base = 0.0055
+    d.upright("cup_floor", r * 0.75, 0.0025, base, "ceramic", cup)
+    rim = r * d.uniform(0.45, 0.6)  # the egg shows four fifths of its height above it
+    d.wall("cup", r * 0.75, 0.002, rim, base, "ceramic", cup, segments=18, flare=0.35)
     z0 = base + 0.0025 + 1.15 * r
     d.ellipsoid("shell", (r, r, 1.15 * r), (0, 0, z0), "organic", color)
     d.ellipsoid("shell_top", (0.93 * r, 0.93 * r, 1.3 * r), (0, 0, z0 + 0.15 * r), "organic", color)
