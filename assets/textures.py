@@ -364,6 +364,11 @@ WORDS: dict[str, tuple[str, ...]] = {
     "cheese": ("STRING", "CHEESE"),
     "cookies": ("COOKIES",),
     "shampoo": ("SHAMPOO",),
+    "mode": ("MODE",),
+    "fan": ("FAN",),
+    "temp": ("TEMP",),
+    "cool": ("COOL",),
+    "swing": ("SWING",),
 }
 #: The Hershey font words are printed in (pure integer rasterisation: the same pixels on
 #: every machine; no font file).

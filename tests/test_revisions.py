@@ -62,7 +62,7 @@ REVISED_3_DESK: dict[str, tuple[str, str | None]] = {
     "juice": ("label", None),  # JUICE beside the fruit (and on the carton's band)
     "milk_carton": ("print", None),  # MILK beside the drop
     "potato_chips": ("label", None),  # CHIPS beside the chip
-    "coaster": ("stain_1", "brown"),  # a stack of cork coasters, a glass's ring on the top
+    "coaster": ("print_edge_u0", None),  # slate/ceramic/bamboo/felt tiles in a rack or caddy
     "tomato": ("lobe_0", None),  # red lobes round a dimple, a green star calyx
     "biscuit": ("cookie_dome", None),  # a chocolate-chip cookie (or COOKIES pack)
     "lemon": ("nipple", None),  # yellow, longer than wide, tapering to a pointed nipple
@@ -80,7 +80,8 @@ REVISED_3_ROOM: dict[str, tuple[str, str | None]] = {
     "lunch_box": ("umeboshi", "red"),  # a bento: rice with a red plum, side dishes
     "placemat": ("place_setting", None),  # rounded vinyl or cloth, a place setting printed
     "wire_cutters": ("bevel_0_0", "white"),  # a short black pointed head, bright bevels
-    "peeler": ("slot", "black"),  # a slotted blade
+    "peeler": ("slot", "black"),  # a Y peeler: a wide slotted blade across the yoke
+    "thermos": ("handle_grip", None),  # a flask: shoulder, screw-on cup or flip lid, handle
     "hex_key": ("clip", None),  # a set of L keys in a clip
     "candle_holder": ("stub", None),  # a candlestick or chamberstick, a short unlit stub
     "basket": ("handle_0_0", None),  # woven, a twisted rim and a loop handle at each end

@@ -6,6 +6,7 @@ import math
 
 from ..design import Design, Traits
 from ..parts import X_TO_Z, axis_angle_quat, quat_mul
+from ..textures import Texture
 from .registry import generator, revised
 
 
@@ -181,12 +182,14 @@ def lcd_glyph(d: Design, name: str, glyph: str, top_left, cell: float, z: float,
 
 @revised("ac_remote", 3)
 def ac_remote_3(d: Design) -> Traits:
-    """Revision 3: a large display at the top end shows the set temperature (24 degrees C,
-    say) beside a snowflake and a sun, over a red power key, big temperature up/down keys
-    and a grid of mode keys (the first read as any remote control)."""
-    color = d.choice(["white", "white", "beige", "gray", "silver"])
-    keys = "gray" if color in ("white", "beige") else "white"
-    lx, w, t = d.uniform(0.14, 0.17), d.uniform(0.05, 0.058), d.uniform(0.016, 0.02)
+    """Revision 3: a white air-conditioner remote whose top third is a large display (its
+    top towards -x): a snowflake, a fan and COOL over the set temperature in big digits
+    with degrees C; under it a few large keys: a big red power key, MODE, the temperature
+    down/up keys either side of TEMP, FAN and SWING (the first, a small display over a grid
+    of keys, read as any remote control)."""
+    color = d.choice(["white", "white", "white", "beige"])
+    keys = "silver"
+    lx, w, t = d.uniform(0.15, 0.17), d.uniform(0.052, 0.058), d.uniform(0.017, 0.02)
     core = lx - t
     d.box("body", (core / 2, w / 2, t / 2), (0, 0, t / 2), "plastic", color, solid_fraction=0.6)
     for sign in (-1, 1):
@@ -210,33 +213,55 @@ def ac_remote_3(d: Design) -> Traits:
         axis="y",
         visual_only=True,
     )
-    # the display, its top towards -x: the temperature large, the mode icons left of it
-    sx0, sx1 = -core / 2 + 0.004, -core / 2 + 0.004 + w * 0.62
+    # the display: the top third of the face
+    span = lx * 0.36
+    sx0, sx1 = -core / 2 + 0.002, -core / 2 + 0.002 + span
     z = t + 0.0004
+    zt = z + 0.0004
     d.box(
         "display_bezel",
-        ((sx1 - sx0) / 2 + 0.002, w * 0.42, 0.0003),
+        (span / 2 + 0.002, w * 0.45, 0.0003),
         ((sx0 + sx1) / 2, 0, t),
         "plastic",
-        "black" if color != "gray" else "white",
+        "black",
         visual_only=True,
     )
     d.box(
-        "lcd",
-        ((sx1 - sx0) / 2, w * 0.38, 0.0004),
-        ((sx0 + sx1) / 2, 0, z),
-        "plastic",
-        "gray",
+        "lcd", (span / 2, w * 0.41, 0.0004), ((sx0 + sx1) / 2, 0, z), "plastic", keys,
         visual_only=True,
-    )
+    )  # fmt: skip
+    # the icon row: a snowflake, a fan and the mode word
+    row = sx0 + span * 0.17
+    icon = span * 0.13
+    for k in range(3):
+        d.box(
+            f"snowflake_{k}", (icon, icon * 0.14, 0.0003), (row, -w * 0.28, zt), "plastic",
+            "blue", yaw=k * math.pi / 3, visual_only=True,
+        )  # fmt: skip
+    fan = (row, -w * 0.08)
+    d.upright("fan_hub", icon * 0.22, 0.0004, zt, "plastic", "black", xy=fan, visual_only=True)
+    for k in range(3):
+        a = k * 2 * math.pi / 3 + 0.4
+        d.ellipsoid(
+            f"fan_blade_{k}",
+            (icon * 0.5, icon * 0.22, 0.0003),
+            (fan[0] + icon * 0.5 * math.cos(a), fan[1] + icon * 0.5 * math.sin(a), zt),
+            "plastic",
+            "black",
+            quat=axis_angle_quat((0, 0, 1), a),
+            visual_only=True,
+        )
+    d.box(
+        "mode_word", (w * 0.15, icon * 0.75, 0.0003), (row, w * 0.2, zt), "plastic", keys,
+        yaw=math.pi / 2, visual_only=True, texture=Texture("print_cool", ("black",)),
+    )  # fmt: skip
+    # the set temperature, big, and degrees C
     temp = d.choice(["24", "25", "26", "22", "18", "16"])
-    span = sx1 - sx0
-    cell = span * 0.25
-    y, top = -w * 0.17, sx0 + (span - 2 * cell) / 2
-    zt = z + 0.0004
+    cell = min(w * 0.2, span * 0.29)
+    top, y0 = sx0 + span * 0.33, -cell * 3.55 / 2
     for k, glyph in enumerate(temp):
-        lcd_glyph(d, f"temp_digit_{k}", glyph, (top, y + k * cell * 1.45), cell, zt, "black")
-    deg = y + 2 * cell * 1.45
+        lcd_glyph(d, f"temp_digit_{k}", glyph, (top, y0 + k * cell * 1.45), cell, zt, "black")
+    deg = y0 + 2.45 * cell + 0.2 * cell
     d.flat_ring(
         "degree",
         cell * 0.14,
@@ -245,64 +270,47 @@ def ac_remote_3(d: Design) -> Traits:
         z,
         "plastic",
         "black",
-        center=(top + 0.1 * cell, deg),
-        segments=8,
+        center=(top + 0.15 * cell, deg),
+        segments=6,
         visual_only=True,
     )
-    lcd_glyph(d, "unit", "C", (top, deg + 0.3 * cell), cell * 0.5, zt, "black")
-    flake = (sx0 + 0.3 * span, -w * 0.29)
-    for k in range(3):
-        a = k * math.pi / 3
+    lcd_glyph(d, "unit", "C", (top, deg + 0.35 * cell), cell * 0.6, zt, "black")
+
+    def key(name: str, word: str, x: float, y: float) -> None:
+        """A wide key printed with its word, read from the front (its top towards -x)."""
         d.box(
-            f"snowflake_{k}",
-            (cell * 0.5, cell * 0.07, 0.0003),
-            (*flake, zt),
-            "plastic",
-            "blue",
-            yaw=a,
-            visual_only=True,
-        )
-    sun = (sx0 + 0.72 * span, -w * 0.29)
-    d.upright("sun", cell * 0.22, 0.0003, zt, "plastic", "orange", xy=sun, visual_only=True)
-    for k in range(4):
-        d.box(
-            f"sun_ray_{k}",
-            (cell * 0.4, cell * 0.05, 0.0002),
-            (*sun, zt),
-            "plastic",
-            "orange",
-            yaw=k * math.pi / 4,
-            visual_only=True,
-        )
-    # the keys under the display
-    x = sx1 + 0.012
-    dot(d, "power", 0.0065, x, w * 0.27, t, "red")
+            name, (w * 0.17, 0.0048, 0.0006), (x, y, t + 0.0006), "rubber", keys,
+            yaw=math.pi / 2, visual_only=True, texture=Texture(f"print_{word}", ("black",)),
+        )  # fmt: skip
+
+    # the keys: a big power key and MODE, the temperature down/up keys, FAN and SWING
+    x = sx1 + 0.013
+    dot(d, "power", 0.0085, x, w * 0.24, t, "red")
+    key("mode_key", "mode", x, -w * 0.2)
+    x += 0.019
     for k, sign in enumerate((-1, 1)):  # temperature down (-y) and up (+y)
-        c = (x + 0.004, sign * 0.0 - w * 0.12 + sign * 0.009)
-        dot(d, f"temp_key_{k}", 0.0068, *c, t, "blue")
+        c = (x, sign * w * 0.3)
+        dot(d, f"temp_key_{k}", 0.0078, *c, t, "blue")
         d.box(
-            f"temp_sign_{k}",
-            (0.0008, 0.0035, 0.0003),
-            (*c, t + 0.0013),
-            "plastic",
-            "white",
+            f"temp_sign_{k}", (0.0009, 0.004, 0.0003), (*c, t + 0.0013), "plastic", "white",
             visual_only=True,
-        )
+        )  # fmt: skip
         if sign > 0:
             d.box(
-                "temp_plus",
-                (0.0035, 0.0008, 0.0003),
-                (*c, t + 0.0013),
-                "plastic",
-                "white",
+                "temp_plus", (0.004, 0.0009, 0.0003), (*c, t + 0.0013), "plastic", "white",
                 visual_only=True,
-            )
-    for row in range(3):
-        for col in (-1, 0, 1):
-            key = (x + 0.02 + row * 0.012, col * w * 0.28, t + 0.0005)
-            d.box(
-                f"key_{row}_{col}", (0.0035, w * 0.1, 0.0005), key, "rubber", keys, visual_only=True
-            )
+            )  # fmt: skip
+    d.box(
+        "temp_word", (w * 0.13, 0.004, 0.0003), (x, 0, t + 0.0003), "plastic", color,
+        yaw=math.pi / 2, visual_only=True, texture=Texture("print_temp", ("black",)),
+    )  # fmt: skip
+    x += 0.018
+    key("fan_key", "fan", x, -w * 0.2)
+    key("swing_key", "swing", x, w * 0.2)
+    d.box(
+        "cover_seam", (0.0004, w * 0.46, 0.0002), (x + 0.014, 0, t + 0.0002), "plastic", "gray",
+        visual_only=True,
+    )  # fmt: skip
     return Traits((color,), "plastic", "cuboid")
 
 

@@ -96,121 +96,64 @@ def peeler(d: Design) -> Traits:
 
 @revised("peeler", 3)
 def peeler_3(d: Design) -> Traits:
-    """Revision 3: lying flat, a Y peeler (a broad handle, a yoke spreading wider than it and
-    a slotted blade across the yoke's tips) or a swivel peeler (a slotted blade between two
-    rails, a pointed eye-remover at the tip); the first, arms and blade at odd heights,
-    was not named at all."""
+    """Revision 3: lying flat, a Y peeler: a chunky handle, a stem spreading into a yoke
+    wider than the handle, and a wide slotted blade across the yoke's tips, its two cutting
+    edges bright (a swivel peeler read as a lighter or a penlight)."""
     color = d.choice(GRIPS)
     material = "wood" if color == "brown" else "plastic"
-    thick = d.uniform(0.009, 0.012)
+    thick = d.uniform(0.011, 0.014)
     z = thick / 2
-    if d.rng.random() < 0.6:  # a Y peeler, the yoke at +x
-        handle, hw = d.uniform(0.085, 0.105), d.uniform(0.011, 0.014)
-        _pill(d, "handle", handle, 2 * hw, thick, material, color, x=-handle / 2)
-        d.upright(
-            "hang_hole",
-            0.0045,
-            0.0006,
-            thick,
-            "plastic",
-            "black",
-            xy=(-handle + 0.013, 0),
-            visual_only=True,
-        )
-        reach, half = d.uniform(0.04, 0.048), d.uniform(0.03, 0.036)
-        yoke = "silver" if d.rng.random() < 0.4 else color
-        yoke_mat = "metal" if yoke == "silver" else material
-        for k, sign in enumerate((-1, 1)):
-            knee = (reach * 0.45, sign * half * 0.85, z)
-            d.segment(
-                f"yoke_{k}",
-                "box",
-                (-0.004, sign * hw * 0.4, z),
-                knee,
-                (0.0035, z * 0.8),
-                yoke_mat,
-                yoke,
-            )
-            d.segment(
-                f"yoke_tip_{k}",
-                "box",
-                knee,
-                (reach, sign * half, z),
-                (0.0035, z * 0.8),
-                yoke_mat,
-                yoke,
-            )
-            d.upright(
-                f"rivet_{k}", 0.0032, thick * 0.9, 0.0, "metal", "silver", xy=(reach, sign * half)
-            )
-        d.box("blade", (0.0055, half - 0.002, 0.0009), (reach, 0, z), "metal", "silver")
-        d.box(
-            "slot",
-            (0.0009, half * 0.8, 0.0002),
-            (reach, 0, z + 0.001),
-            "metal",
-            "black",
-            visual_only=True,
-        )
-        for k, sign in enumerate((-1, 1)):
-            d.box(
-                f"edge_{k}",
-                (0.0004, half * 0.85, 0.0002),
-                (reach + sign * 0.004, 0, z + 0.0009),
-                "metal",
-                "gray",
-                visual_only=True,
-            )
-        return Traits((color, "silver"), material, "T-shape")
-    handle, hw = d.uniform(0.09, 0.11), d.uniform(0.01, 0.012)
+    handle, hw = d.uniform(0.08, 0.095), d.uniform(0.013, 0.016)
     _pill(d, "handle", handle, 2 * hw, thick, material, color, x=-handle / 2)
     d.upright(
         "hang_hole",
-        0.004,
+        0.005,
         0.0006,
         thick,
         "plastic",
         "black",
-        xy=(-handle + 0.012, 0),
+        xy=(-handle + 0.014, 0),
         visual_only=True,
     )
-    frame, half = d.uniform(0.055, 0.065), d.uniform(0.009, 0.011)
+    reach, half = d.uniform(0.05, 0.056), d.uniform(0.031, 0.034)
+    yoke = "silver" if d.rng.random() < 0.4 else color
+    yoke_mat = "metal" if yoke == "silver" else material
+    arm = (0.0042, z * 0.8)
+    stem = reach * 0.3
+    d.segment("stem", "box", (-0.006, 0, z), (stem, 0, z), (0.006, z * 0.8), yoke_mat, yoke)
     for k, sign in enumerate((-1, 1)):
-        d.box(
-            f"rail_{k}",
-            (frame / 2, 0.002, z * 0.7),
-            (frame / 2, sign * half, z * 0.7),
-            "metal",
-            "silver",
+        knee = (reach * 0.6, sign * half * 0.92, z)
+        d.segment(f"yoke_{k}", "box", (stem - 0.002, 0, z), knee, arm, yoke_mat, yoke)
+        d.segment(f"yoke_tip_{k}", "box", knee, (reach, sign * half, z), arm, yoke_mat, yoke)
+        d.upright(
+            f"rivet_{k}", 0.0038, thick * 0.95, 0.0, "metal", "silver", xy=(reach, sign * half)
         )
-    d.segment(
-        "eye_tip",
-        "box",
-        (frame, 0, z * 0.7),
-        (frame + 0.014, 0, z * 0.7),
-        (half + 0.002, z * 0.7),
-        "metal",
-        "silver",
-    )
-    d.ellipsoid(
-        "tip", (0.008, half + 0.002, z * 0.7), (frame + 0.014, 0, z * 0.7), "metal", "silver"
-    )
-    d.box(
-        "blade",
-        (frame / 2 - 0.005, half - 0.002, 0.0009),
-        (frame / 2, 0, z * 0.7),
-        "metal",
-        "silver",
-    )
+    d.box("blade", (0.0075, half - 0.002, 0.0009), (reach, 0, z + 0.0009), "metal", "silver")
     d.box(
         "slot",
-        (frame / 2 - 0.009, 0.0009, 0.0002),
-        (frame / 2, 0, z * 0.7 + 0.001),
+        (0.0013, half * 0.78, 0.0002),
+        (reach, 0, z + 0.002),
         "metal",
         "black",
         visual_only=True,
     )
-    return Traits((color, "silver"), material, "elongated")
+    for k, sign in enumerate((-1, 1)):
+        d.box(
+            f"edge_{k}",
+            (0.0006, half * 0.85, 0.0002),
+            (reach + sign * 0.0052, 0, z + 0.002),
+            "metal",
+            "white",
+            visual_only=True,
+        )
+    d.box(  # the potato-eye scoop on one arm
+        "eye_scoop",
+        (0.004, 0.0025, z * 0.6),
+        (reach * 0.75, half * 1.02, z),
+        "metal",
+        "silver",
+    )
+    return Traits((color, "silver"), material, "T-shape")
 
 
 def _pill(d: Design, name: str, length, width, height, material, color, x=0.0) -> None:
@@ -295,60 +238,62 @@ def wire_cutters(d: Design) -> Traits:
 
 @revised("wire_cutters", 3)
 def wire_cutters_3(d: Design) -> Traits:
-    """Revision 3: diagonal side cutters lying across the view, jaws shut: a short, black,
-    pointed head (two almond jaws meeting at the tip) with a bright ground bevel running
-    down each jaw to the straight cutting edge between them, so that the bevels close in a
-    V at the point; a round boss with a bright rivet; two plain dipped grips, a little
-    open (the first, long straight jaws, read as pliers or a
-    can opener; jaws opened like a beak with a spring and two-tone grips as pliers or wire
-    strippers; a wire held in the jaws as wire strippers)."""
+    """Revision 3: diagonal side cutters lying across the view, cutting a wire: a short,
+    black, pointed head of two almond jaws opened a little about a round boss with a
+    bright rivet, a bright ground bevel down each jaw's cutting edge, and a short piece of
+    insulated wire standing in the gap between the edges, bent over the front jaw to a
+    bare copper end; two plain dipped grips, spread with the jaws (the first, long
+    straight jaws, read as pliers or a can opener; the head shut and empty, as pliers;
+    a flat square nose is the pliers')."""
     grip = d.choice(["red", "red", "yellow", "red", "orange", "blue"])
     metal, shine = "black", "white"  # a dark oxide head, so that the ground bevels shine
+    cover = d.choice([c for c in ("blue", "green", "yellow", "red") if c != grip])
     jaw_len, half_w = d.uniform(0.032, 0.035), d.uniform(0.0135, 0.0145)
-    handle_len, closed = d.uniform(0.095, 0.1), d.uniform(0.008, 0.01)
-    open_a = math.radians(d.uniform(6.0, 8.0))  # each handle turned a little open
+    handle_len, closed = d.uniform(0.095, 0.1), d.uniform(0.004, 0.006)
+    open_a = math.radians(d.uniform(9.0, 11.0))  # each half turned open about the rivet
     thick = d.uniform(0.011, 0.012)
     z = thick / 2
     r = d.uniform(0.0064, 0.0068)  # the dipped grips' radius
-
-    def p(u: float, v: float, h: float) -> tuple[float, float, float]:
-        """The tool's frame (u from the handles to the tip) laid along +y, across the view."""
-        return (-v, u, h)
+    wire_r = d.uniform(0.0017, 0.002)
 
     def turn(u: float, v: float, s: int, h: float) -> tuple[float, float, float]:
-        """A point of the half on side ``s``, turned open about the rivet."""
+        """A point of the half on side ``s`` (the tool's frame: u from the handles to the
+        tip), turned open about the rivet and laid along +y, across the view."""
         c, sn = math.cos(s * open_a), math.sin(s * open_a)
-        return p(u * c - v * sn, u * sn + v * c, h)
+        return (-(u * sn + v * c), u * c - v * sn, h)
 
     d.upright("boss", half_w * 0.9, thick, 0.0, "metal", metal)
     d.upright("rivet", 0.0045, thick + 0.001, 0.0, "metal", shine)
-    # the jaws: two almonds from beside the rivet to the shared point
-    jaws = [((-0.004, s * half_w * 0.55), (jaw_len, 0.0)) for s in (-1, 1)]
     semi = half_w * 0.55  # the almonds' half width
-    for k, (a0, a1) in enumerate(jaws):
-        d.segment(f"jaw_{k}", "ellipsoid", p(*a0, z), p(*a1, z), (semi, z), "metal", metal)
 
-    def top(u: float, v: float) -> float:
-        """The height of the jaws' top at (u, v)."""
-        high = 0.0
-        for a0, a1 in jaws:
-            half = math.dist(a0, a1) / 2
-            du, dv = ((b - a) / (2 * half) for a, b in zip(a0, a1, strict=True))
-            x = (u - (a0[0] + a1[0]) / 2) * du + (v - (a0[1] + a1[1]) / 2) * dv
-            y = -(u - (a0[0] + a1[0]) / 2) * dv + (v - (a0[1] + a1[1]) / 2) * du
-            high = max(high, z + z * math.sqrt(max(1 - (x / half) ** 2 - (y / semi) ** 2, 0.0)))
-        return high
+    def edge(s: int, u: float) -> tuple[float, float]:
+        """Where the almond of side ``s`` ends across u (towards the middle), shut, and
+        how high its top is a little inside that."""
+        (u0, v0), (u1, v1) = (-0.004, s * semi), (jaw_len, 0.0)
+        a = math.dist((u0, v0), (u1, v1)) / 2
+        eu, ev = (u1 - u0) / (2 * a), (v1 - v0) / (2 * a)
+        du = u - (u0 + u1) / 2
+        qa = ev * ev / a**2 + eu * eu / semi**2
+        qb = 2 * du * eu * ev * (1 / a**2 - 1 / semi**2)
+        qc = du * du * (eu * eu / a**2 + ev * ev / semi**2) - 1
+        root = math.sqrt(max(qb * qb - 4 * qa * qc, 0.0))
+        t = (-qb - s * root) / (2 * qa)  # the end towards -s
+        v = (v0 + v1) / 2 + t + s * 0.0016
+        x, y = du * eu + (v - (v0 + v1) / 2) * ev, -du * ev + (v - (v0 + v1) / 2) * eu
+        return v, z + z * math.sqrt(max(1 - (x / a) ** 2 - (y / semi) ** 2, 0.0)) + 0.0006
 
     for k, s in enumerate((-1, 1)):
-        # the ground bevel down this jaw to the cutting edge, following the jaw's top
-        edge = [
-            (0.005 + (jaw_len * 0.9 - 0.005) * f, s * (0.0036 - 0.003 * f))
-            for f in (0, 0.33, 0.66, 1)
-        ]
-        for j, (b0, b1) in enumerate(zip(edge, edge[1:], strict=False)):
+        d.segment(
+            f"jaw_{k}", "ellipsoid", turn(-0.004, s * semi, s, z), turn(jaw_len, 0.0, s, z),
+            (semi, z), "metal", metal,
+        )  # fmt: skip
+        # the ground bevel along this jaw's cutting edge, following the jaw's top
+        us = [0.006 + (jaw_len * 0.88 - 0.006) * f for f in (0, 0.33, 0.66, 1)]
+        for j, (u0, u1) in enumerate(zip(us, us[1:], strict=False)):
+            (v0, h0), (v1, h1) = edge(s, u0), edge(s, u1)
             d.segment(
-                f"bevel_{k}_{j}", "box", p(*b0, top(*b0) + 0.0006), p(*b1, top(*b1) + 0.0006),
-                (0.0016, 0.0003), "metal", shine, visual_only=True,
+                f"bevel_{k}_{j}", "box", turn(u0, v0, s, h0), turn(u1, v1, s, h1),
+                (0.0014, 0.0003), "metal", shine, visual_only=True,
             )  # fmt: skip
         # the handle of this half lies on the other side of the rivet
         knee, end = (-0.02, -s * 0.0075), (-handle_len, -s * closed)
@@ -357,6 +302,24 @@ def wire_cutters_3(d: Design) -> Traits:
             (0.0042, z * 0.6), "metal", metal,
         )  # fmt: skip
         d.segment(f"grip_{k}", "capsule", turn(*knee, s, r), turn(*end, s, r), r, "rubber", grip)
+    # the wire, standing in the gap where the cutting edges are about to meet, bent over
+    # the front jaw (towards +x) down to the table, its cut end bare copper
+    uw = jaw_len * 0.5
+    inner = [turn(uw, edge(s, uw)[0] - s * 0.0016, s, 0.0) for s in (-1, 1)]
+    wx, wy, _ = ((a + b) / 2 for a, b in zip(*inner, strict=True))
+    rise = thick + d.uniform(0.008, 0.011)
+    reach = half_w + d.uniform(0.008, 0.012)
+    path = [
+        (wx, wy, wire_r),
+        (wx, wy, rise),
+        (wx + reach * 0.55, wy - 0.003, rise + 0.002),
+        (wx + reach, wy - 0.006, thick * 0.6),
+        (wx + reach * 1.15, wy - 0.007, wire_r),
+    ]
+    for j, (a, b) in enumerate(zip(path, path[1:], strict=False)):
+        d.segment(f"wire_{j}", "capsule", a, b, wire_r, "plastic", cover)
+    tip = (path[-1][0] + 0.009, path[-1][1] - 0.0005, wire_r * 0.6)
+    d.segment("copper", "capsule", path[-1], tip, wire_r * 0.6, "metal", "golden")
     return Traits((grip, metal), "metal", "irregular")
 
 
@@ -456,45 +419,145 @@ def _cork_stain(d: Design, radius: float, z: float, center: tuple[float, float])
 
 @revised("coaster", 3)
 def coaster_3(d: Design) -> Traits:
-    """Revision 3: a set of round cork coasters, each one thin and palm sized: a stack of
-    them fanned out so every edge shows, the top one ringed brown where a wet glass stood;
-    or a neat stack standing in a wire caddy with posts round it (one cork disc, or a slate
-    square, read as a mouse pad or a wireless charger)."""
-    cork = "beige"
-    size = d.uniform(0.045, 0.049)
-    thick = d.uniform(0.0045, 0.006)
-    if d.rng.random() < 0.4:  # fanned out, each a step further along
-        layers = d.choice([4, 5])
-        step = d.uniform(0.0045, 0.0055)
-        a = d.uniform(2.9, 4.6)  # away from the front, so the lower edges show
-        for k in range(layers):
-            xy = (k * step * math.cos(a), k * step * math.sin(a))
-            d.upright(f"disk_{k}", size, thick, k * thick, "wood", cork, xy=xy, texture=CORK)
-        top = layers * thick
-        center = ((layers - 1) * step * math.cos(a), (layers - 1) * step * math.sin(a))
-        colors = (cork,)
-    else:  # a neat stack in a caddy: a round base and four posts
-        caddy = d.choice(["black", "silver", "brown"])
-        material = "wood" if caddy == "brown" else "metal"
-        fill = {} if material == "wood" else dict(solid_fraction=0.3)
-        base = 0.004
-        d.upright("caddy_base", size + 0.004, base, 0.0, material, caddy, **fill)
-        layers = d.choice([5, 6])
-        for k in range(layers):
-            xy = (d.uniform(-0.0012, 0.0012), d.uniform(-0.0012, 0.0012))
-            z = base + k * thick
-            d.upright(f"disk_{k}", size, thick, z, "wood", cork, xy=xy, texture=CORK)
-        top = base + layers * thick
-        spin = d.uniform(0, math.pi / 2)
-        for k in range(4):
-            b = spin + k * math.pi / 2
-            xy = ((size + 0.0025) * math.cos(b), (size + 0.0025) * math.sin(b))
-            d.upright(f"post_{k}", 0.0018, top + 0.008 - base, base, material, caddy, xy=xy, **fill)
-            d.sphere(f"post_knob_{k}", 0.0028, (xy[0], xy[1], top + 0.008), material, caddy, **fill)
-        center = (0.0, 0.0)
-        colors = (cork, caddy)
-    _cork_stain(d, d.uniform(0.028, 0.032), top, center)
-    return Traits(colors, "wood", "cylinder")
+    """Revision 3: a set of square or round coasters (slate, ceramic, bamboo or felt, each
+    printed with a geometric tile in a contrasting ink): standing on edge in a rack between
+    two uprights, the front one's print facing out, or lying in a box caddy open at the
+    front, the top one rimmed (a stack of round cork discs read as tortillas)."""
+    material, color, inks = d.choice(
+        [
+            ("stone", "black", ["white", "golden"]),
+            ("stone", "gray", ["white", "black"]),
+            ("ceramic", "white", ["blue", "black", "green", "red"]),
+            ("ceramic", "blue", ["white"]),
+            ("wood", "brown", ["black", "white"]),
+            ("fabric", "gray", ["red", "white"]),
+        ]
+    )
+    ink = d.choice(inks)
+    fill = dict(solid_fraction=0.5) if material in ("stone", "ceramic") else {}
+    caddy = d.choice(["brown", "black", "silver", "white"])
+    caddy_mat = {"brown": "wood", "white": "plastic"}.get(caddy, "metal")
+    caddy_fill = dict(solid_fraction=0.25) if caddy_mat == "metal" else {}
+    half = d.uniform(0.04, 0.045)  # half the coaster's side
+    thick = d.uniform(0.005, 0.007)
+    if d.rng.random() < 0.5:  # standing on edge in a rack, faces along x, the print at +x
+        count = d.choice([4, 5])
+        pitch = thick + d.uniform(0.004, 0.006)
+        base = 0.006
+        depth = count * pitch / 2 + 0.006
+        d.slab("rack_base", (depth, half + 0.008, base / 2), 0.0, caddy_mat, caddy, **caddy_fill)
+        for k, s in enumerate((-1, 1)):  # the two uprights, and a low rail at each side
+            d.slab(
+                f"rack_upright_{k}",
+                (0.004, 0.004, half * 0.75),
+                base,
+                caddy_mat,
+                caddy,
+                xy=(0.0, s * (half + 0.004)),
+                **caddy_fill,
+            )
+            d.slab(
+                f"rack_rail_{k}",
+                (0.003, half, 0.006),
+                base,
+                caddy_mat,
+                caddy,
+                xy=(s * (depth - 0.003), 0.0),
+                **caddy_fill,
+            )
+        x0 = -(count - 1) * pitch / 2
+        for k in range(count):
+            x = x0 + k * pitch
+            d.box(
+                f"coaster_{k}",
+                (thick / 2, half, half),
+                (x, 0, base + half),
+                material,
+                color,
+                **fill,
+            )
+        face = x0 + (count - 1) * pitch + thick / 2 + 0.0002
+        _tile_print(d, ink, half, (face, 0.0, base + half), "x")
+    else:  # lying in a box caddy open at +x, the stack's edges showing at the front
+        count = d.choice([4, 5])
+        floor, wall = 0.004, 0.004
+        inner = half + 0.002
+        height = floor + count * thick * 0.5
+        sides = (inner + wall / 2, inner + wall, (height - floor) / 2)
+        d.slab(
+            "caddy_floor",
+            (inner + wall / 2, inner + wall, floor / 2),
+            0.0,
+            caddy_mat,
+            caddy,
+            xy=(-wall / 2, 0.0),
+            **caddy_fill,
+        )
+        d.slab(
+            "caddy_back",
+            (wall / 2, inner + wall, sides[2]),
+            floor,
+            caddy_mat,
+            caddy,
+            xy=(-inner - wall / 2, 0.0),
+            **caddy_fill,
+        )
+        for k, s in enumerate((-1, 1)):
+            d.slab(
+                f"caddy_side_{k}",
+                (inner, wall / 2, sides[2]),
+                floor,
+                caddy_mat,
+                caddy,
+                xy=(0.0, s * (inner + wall / 2)),
+                **caddy_fill,
+            )
+        for k in range(count):
+            d.slab(
+                f"coaster_{k}", (half, half, thick / 2), floor + k * thick, material, color, **fill
+            )
+        top = floor + count * thick
+        d.frame("rim", (half, half), 0.0035, top, 0.0012, material, color, **fill)
+        _tile_print(d, ink, half - 0.004, (0.0, 0.0, top + 0.0003), "z")
+    colors = (color,) if caddy == color else (color, caddy)
+    return Traits(colors, material, "flat")
+
+
+def _tile_print(d: Design, ink: str, half: float, center, normal: str) -> None:
+    """A print on a coaster's face (normal +x or +z) at ``center``: an inset border round a
+    cocktail glass, or round a diamond with a square dot at the middle."""
+    cx, cy, cz = center
+
+    def put(name, u, v, hu, hv, turn=0.0):
+        if normal == "z":  # upright to a viewer at +x: u along +y, v along -x
+            quat = axis_angle_quat((0, 0, 1), turn + math.pi / 2)
+            pos, size = (cx - v, cy + u, cz), (hu, hv, 0.0003)
+        else:
+            quat = axis_angle_quat((1, 0, 0), turn)
+            pos, size = (cx, cy + u, cz + v), (0.0003, hu, hv)
+        d.add(name, "box", size, pos, "paper", ink, quat=quat, visual_only=True)
+
+    b, w = half * 0.82, 0.0022
+    for k, s in enumerate((-1, 1)):
+        put(f"print_edge_u{k}", s * b, 0.0, w, b + w)
+        put(f"print_edge_v{k}", 0.0, s * b, b + w, w)
+    if d.rng.random() < 0.5:  # a cocktail glass: a V bowl on a stem and a foot
+        top, tip, base = b * 0.5, -b * 0.05, -b * 0.5
+        put("print_glass_rim", 0.0, top, b * 0.45, w)
+        arm = math.hypot(b * 0.45, top - tip)
+        for k, s in enumerate((-1, 1)):
+            turn = math.atan2(top - tip, s * b * 0.45)
+            put(f"print_glass_{k}", s * b * 0.225, (top + tip) / 2, arm / 2, w, turn)
+        put("print_glass_stem", 0.0, (tip + base) / 2, w, (tip - base) / 2)
+        put("print_glass_foot", 0.0, base, b * 0.25, w)
+        put("print_olive", -b * 0.1, top - b * 0.15, b * 0.06, b * 0.06)
+        return
+    r = b * 0.72  # the diamond's corners, on the axes
+    side = r / math.sqrt(2)
+    for k, (su, sv) in enumerate(((1, 1), (-1, 1), (-1, -1), (1, -1))):
+        turn = -math.pi / 4 if su * sv > 0 else math.pi / 4
+        put(f"print_diamond_{k}", su * r / 2, sv * r / 2, side, w, turn)
+    put("print_dot", 0.0, 0.0, b * 0.16, b * 0.16, math.pi / 4)
 
 
 @generator(
@@ -657,6 +720,77 @@ def thermos(d: Design) -> Traits:
         "rubber",
         cap,
         visual_only=True,
+    )
+    colors = (color,) if cap == color else (color, cap)
+    return Traits(colors, "metal", "cylinder")
+
+
+@revised("thermos", 3)
+def thermos_3(d: Design) -> Traits:
+    """Revision 3: a vacuum flask: a steel or coloured body on a black rubber foot, its
+    shoulder narrowing to a neck, a carry handle on two lugs up its side, and on top either
+    a screw-on cup (its lip ridge over a dark thread gap, a stopper's knob peeping above)
+    or a flip lid with a push button and a spout (a plain banded cylinder read as a stack of
+    cups)."""
+    color = d.choice(["silver", "silver", "green", "black", "blue", "red", "white"])
+    r, h = d.uniform(0.034, 0.038), d.uniform(0.22, 0.29)
+    foot = 0.014
+    d.upright("foot", r + 0.0008, foot, 0.0, "rubber", "black")
+    shoulder = h * d.uniform(0.62, 0.66)
+    d.upright("body", r, shoulder - foot, foot, "metal", color, solid_fraction=0.05)
+    d.upright("body_seam", r + 0.0005, 0.002, foot + 0.012, "metal", "silver", visual_only=True)
+    steps = (0.93, 0.82, 0.7)
+    for k, f in enumerate(steps):  # the shoulder, narrowing in steps
+        d.upright(
+            f"shoulder_{k}", r * f, 0.006, shoulder + 0.006 * k, "metal", color, solid_fraction=0.1
+        )
+    z = shoulder + 0.006 * len(steps)
+    d.upright("neck", r * 0.62, 0.01, z, "metal", "silver", solid_fraction=0.2)
+    if d.rng.random() < 0.6:  # a screw-on cup over a stopper
+        cap = d.choice(["silver", "black", color])
+        d.upright("thread_gap", r * 0.74, 0.004, z, "rubber", "black")
+        z += 0.004
+        cup_h = h - z - 0.006
+        d.upright("cup_lip", r * 0.97, 0.006, z, "plastic", cap, solid_fraction=0.3)
+        d.upright("cup", r * 0.9, cup_h - 0.006, z + 0.006, "plastic", cap, solid_fraction=0.15)
+        for k in range(2):  # grip rings round the cup
+            d.upright(
+                f"cup_ring_{k}",
+                r * 0.9 + 0.0008,
+                0.002,
+                z + cup_h * (0.45 + 0.2 * k),
+                "plastic",
+                "gray" if cap == "black" else "black",
+                visual_only=True,
+            )
+        d.upright("stopper_knob", r * 0.3, 0.006, h - 0.006, "plastic", "black")
+    else:  # a flip lid: a push button on top, a spout at the front
+        cap = d.choice(["black", "gray", color])
+        lid_h = h - z - 0.004
+        d.upright("lid", r * 0.8, lid_h, z, "plastic", cap, solid_fraction=0.3)
+        d.upright("lid_top", r * 0.7, 0.004, z + lid_h, "plastic", cap, solid_fraction=0.3)
+        d.upright(
+            "button", r * 0.3, 0.004, h - 0.002, "plastic", "gray" if cap != "gray" else "black"
+        )
+        d.box(
+            "spout",
+            (r * 0.2, 0.006, 0.006),
+            (r * 0.8 + r * 0.1, 0, z + lid_h - 0.01),
+            "plastic",
+            cap,
+        )
+    # a carry handle up the side (+y), on two lugs round the body
+    gap, grip_w = 0.02, 0.0065
+    lo, hi = foot + (shoulder - foot) * 0.3, shoulder - 0.01
+    for k, zz in enumerate((lo, hi)):
+        d.upright(f"lug_band_{k}", r + 0.0015, 0.01, zz - 0.005, "plastic", "black")
+        d.box(f"lug_{k}", (0.006, gap / 2 + 0.001, 0.005), (0, r + gap / 2, zz), "plastic", "black")
+    d.box(
+        "handle_grip",
+        (0.006, grip_w / 2, (hi - lo) / 2 + 0.005),
+        (0, r + gap + grip_w / 2, (lo + hi) / 2),
+        "plastic",
+        "black",
     )
     colors = (color,) if cap == color else (color, cap)
     return Traits(colors, "metal", "cylinder")
