@@ -33,7 +33,7 @@ from .generators import GENERATORS, LIBRARY
 from .identity import IDENTITY_SCHEME, content_hash, hash_for
 from .importer import data_home
 
-DEFAULT_SNAPSHOT = "detailed"
+DEFAULT_SNAPSHOT = "recognisable"
 SNAPSHOT_DIR = "snapshots"
 
 
@@ -51,6 +51,7 @@ SHIPPED = {
     "default": Frozen(textures=False, library=1),
     "printed": Frozen(textures=True, library=1),
     "detailed": Frozen(textures=True, library=2),
+    "recognisable": Frozen(textures=True, library=3),
 }
 
 

@@ -2,13 +2,13 @@
 
 Evaluation seeds come from ``splits.eval_seed`` (training data and demos use seeds below
 ``splits.EVAL_SEED_BASE``, so the two never share an episode). The sets ship with the
-package under ``tasks/episodes/v<version>/<env id>/<robot>/<split>.jsonl``: version 5 (the
-default) plays on the ``detailed`` snapshot (library revision 2: the generators whose shapes
-readers misnamed, rebuilt) and is said as people say it (``assets.expressions``); version 4,
-the same on the ``printed`` snapshot (labels, dials, grain: ``assets.textures``, library
-revision 1), version 3, the same phrasing on the plain ``default`` snapshot, and version 2,
-the same seeds in the former phrasing, stay loadable so that results published on them can
-be reproduced. Each episode names its
+package under ``tasks/episodes/v<version>/<env id>/<robot>/<split>.jsonl``: version 7 (the
+default) plays on the ``recognisable`` snapshot (library revision 3: the categories fresh
+readers misnamed, rebuilt; packaged goods print their kind) and is said as people say it
+(``assets.expressions``). The older versions stay loadable so that results published on them
+can be reproduced: 6 (the same grammar) and 5 on the ``detailed`` snapshot (revision 2), 4 on
+the ``printed`` one (labels, dials, grain: ``assets.textures``, revision 1), 3 on the plain
+``default`` one, and 2, the same seeds in the former phrasing. Each episode names its
 snapshot, and an env builds it from that one.
 
 A set also exports as a config of ManiSkill's evaluator convention: ``env_info`` (``env_id``,
@@ -41,8 +41,8 @@ from .verify import verify
 
 EPISODES_PER_SET = 100
 #: The stored set versions (``--set-version``) and the one evaluation uses by default.
-SET_VERSIONS = (2, 3, 4, 5, 6)
-SET_VERSION = 6
+SET_VERSIONS = (2, 3, 4, 5, 6, 7)
+SET_VERSION = 7
 #: Seeds tried per kept episode at most (seeds whose scenes hide a candidate are skipped).
 SEEDS_PER_EPISODE = 5
 #: Each version's file of its set files' SHA-256 (``instructmove doctor`` checks them).

@@ -165,30 +165,41 @@ def test_version_3_plays_on_the_plain_snapshot_it_was_published_on():
         env.close()
 
 
-def test_version_5_plays_the_revised_assets_and_version_4_keeps_its_own():
-    """Version 5 is version 4 on the ``detailed`` snapshot (library revision 2): most scenes
-    are version 4's, none holds a build the revision replaced, and the revised assets are
-    there; a version-4 episode still builds its revision-1 assets."""
+#: (older version, newer version, their snapshots, the library revision between them, the
+#: least share of the newer version's scenes the older one holds).
+REVISED_SETS = [(4, 5, "printed", "detailed", 2, 0.5), (6, 7, "detailed", "recognisable", 3, 0.0)]
+
+
+@pytest.mark.parametrize(
+    ("old_v", "new_v", "old_snap", "new_snap", "revision", "share"), REVISED_SETS
+)
+def test_a_set_on_a_revised_library_plays_its_assets_and_the_older_keeps_its_own(
+    old_v, new_v, old_snap, new_snap, revision, share
+):
+    """Version 5 is version 4 on the ``detailed`` snapshot (library revision 2), version 7
+    version 6 on ``recognisable`` (revision 3): none of the newer scenes holds a build the
+    revision replaced, the revised assets are there; an older episode still builds its own
+    assets."""
     from instructmove_ms.assets.generators import REVISIONS
 
-    revised = {c for c, builds in REVISIONS.items() if 2 in builds}  # what revision 2 rebuilt
-    printed, detailed = load_snapshot("printed"), load_snapshot("detailed")
+    revised = {c for c, builds in REVISIONS.items() if revision in builds}
+    older, newer = load_snapshot(old_snap), load_snapshot(new_snap)
     env_id, robot = "PickCategory-InstructMove", "franka"
-    old, new = (heldout.load_set(env_id, robot, "seen", version=v) for v in (4, 5))
-    assert {s.snapshot for s in old} == {"printed"} and {s.snapshot for s in new} == {"detailed"}
+    old, new = (heldout.load_set(env_id, robot, "seen", version=v) for v in (old_v, new_v))
+    assert {s.snapshot for s in old} == {old_snap} and {s.snapshot for s in new} == {new_snap}
     shared = {heldout.scene_key(s) for s in old} & {heldout.scene_key(s) for s in new}
-    assert len(shared) > 0.5 * len(new)
-    assert all(o.uuid in detailed for s in new for o in s.objects)
-    news = [o.uuid for s in new for o in s.objects if detailed[o.uuid].category in revised]
-    assert news and not any(u in printed for u in news)
-    spec = next(s for s in old if any(printed[o.uuid].category in revised for o in s.objects))
+    assert len(shared) >= share * len(new)
+    assert all(o.uuid in newer for s in new for o in s.objects)
+    news = [o.uuid for s in new for o in s.objects if newer[o.uuid].category in revised]
+    assert news and not any(u in older for u in news)
+    spec = next(s for s in old if any(older[o.uuid].category in revised for o in s.objects))
     env = gym.make(env_id, robot_uids=robot, obs_mode="state")
     try:
         env.reset(options={"episode": spec.to_dict()})
-        assert env.unwrapped.catalog_of(spec).name == "printed"
+        assert env.unwrapped.catalog_of(spec).name == old_snap
         built = {o.uuid for o in env.unwrapped.episode.objects}
         assert built == {o.uuid for o in spec.objects} and not built & set(news)
-        assert any(printed[u].category in revised for u in built)
+        assert any(older[u].category in revised for u in built)
     finally:
         env.close()
 

@@ -42,7 +42,7 @@ def test_one_unlabelled_close_up_per_category_and_its_key(tmp_path):
 
 
 def test_the_cli_writes_the_recognition_sheet_for_the_categories_asked(tmp_path, capsys):
-    """By default it photographs the default snapshot (``detailed``, which wears prints):
+    """By default it photographs the default snapshot (``recognisable``, which wears prints):
     the cola can with its print, not the plain one."""
     out = tmp_path / "recognition"
     assert main(["assets", "sheet", "--category", "canned_coke", "--recognition", str(out)]) == 0
