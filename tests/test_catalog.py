@@ -112,6 +112,10 @@ def test_every_instance_passes_the_quality_checks():
     assert not failures
 
 
+#: How far a flat receptacle's placement layer may rise above its top (metres).
+FLAT_LAYER = 0.005
+
+
 def test_containers_declare_an_interior_inside_their_bounds():
     for inst in load_snapshot().instances:
         if not inst.is_container:
@@ -120,7 +124,10 @@ def test_containers_declare_an_interior_inside_their_bounds():
         lo, hi = inst.bounds
         c, half = np.asarray(inst.interior.center), np.asarray(inst.interior.half)
         assert np.all(c[:2] - half >= lo[:2]) and np.all(c[:2] + half <= hi[:2])
-        assert lo[2] <= c[2] < c[2] + inst.interior.height <= hi[2] + 1e-9
+        # the floor lies in the object; only a flat receptacle's (a mat's) placement layer
+        # rises above it, by at most FLAT_LAYER
+        assert lo[2] <= c[2] <= hi[2] + 1e-9 and inst.interior.height > 0
+        assert c[2] + inst.interior.height <= hi[2] + FLAT_LAYER
 
 
 def test_a_cup_that_fits_the_hand_is_also_held_around_its_whole_rim():

@@ -136,7 +136,12 @@ def test_stored_visibility_matches_a_fresh_segmentation_render(env_id, robot):
 def test_visibility_fails_an_object_under_the_table():
     """A candidate moved under the table is seen by no camera: the measure says so."""
     env = gym.make("PickCategory-InstructMove", robot_uids="piperx", obs_mode="state")
-    env.reset(seed=0)
+    for seed in range(10):  # a training scene that shows every object (they are not gated)
+        env.reset(seed=seed)
+        if not hidden_objects(measure(env)):
+            break
+    else:
+        pytest.fail("no training scene among seeds 0-9 shows every object")
     spec = env.unwrapped.episode
     k = spec.candidates[0]
     objects = list(spec.objects)

@@ -202,7 +202,7 @@ def test_an_object_resting_upside_down_in_the_receptacle_counts_as_placed():
     upright box): the target dropped upside down into the goal receptacle is placed once it
     rests; the same drop next to the receptacle is not."""
     env = make_env(TASK, control_mode="pd_joint_pos")
-    env.reset(seed=1)
+    env.reset(seed=3)  # a target that rests upside down (a round one rolls over)
     u = env.unwrapped
     target = u.objects[u.episode.target]
     lo, hi = u.catalog_of(u.episode)[u.episode.objects[u.episode.target].uuid].bounds

@@ -111,6 +111,13 @@ def test_an_episode_answer_names_the_cell_its_object_holds():
     assert not found("1 A8", pick) and not found("2 B1", pick) and not found("B1", pick)
     place = {"target": 0, "destination": 1, "owners": [owners, owners]}
     assert found("1 B1 / 2 A8", place) and not found("1 B1", place)
+    # a small object that holds the most pixels of no cell still owns the cell holding most
+    # of it (what the reader is asked to name)
+    seg[24:32, 24:32] = 7  # object 0 fills cell D4 ...
+    seg[24:26, 24:28] = 5  # ... where object 2, small, lies
+    owners = cell_owners(seg, {7: 0, 9: 1, 5: 2})
+    assert owners[3][3] == 2 and sum(row.count(2) for row in owners) == 1
+    assert owners[0][1] == 0 and owners[7][0] == 1  # the others keep theirs
 
 
 def _small_catalog(categories):

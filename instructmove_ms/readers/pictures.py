@@ -60,19 +60,27 @@ def ruled(image: np.ndarray, title: str) -> np.ndarray:
 
 def cell_owners(segmentation: np.ndarray, ids: dict[int, int]) -> list[list[int]]:
     """Per grid cell of ``segmentation`` (H, W per-scene ids), the object (the value of
-    ``ids``, keyed by per-scene id) with the most pixels in it, or -1 for none."""
+    ``ids``, keyed by per-scene id) with the most pixels in it, or -1 for none; an object
+    the camera shows that holds the most pixels of no cell gets the cell that holds most of
+    it (what a reader is asked to name), so every object shown owns a cell."""
     h, w = segmentation.shape
-    owners = []
+    counts = np.zeros((GRID, GRID, len(ids)), dtype=np.int64)
     for r in range(GRID):
-        row = []
         for c in range(GRID):
             cell = segmentation[
                 r * h // GRID : (r + 1) * h // GRID, c * w // GRID : (c + 1) * w // GRID
             ]
-            counts = {k: int((cell == sid).sum()) for sid, k in ids.items()}
-            best = max(counts, key=lambda k: counts[k], default=-1)
-            row.append(best if counts.get(best, 0) > 0 else -1)
-        owners.append(row)
+            counts[r, c] = [int((cell == sid).sum()) for sid in ids]
+    objects = list(ids.values())
+    owners = [
+        [objects[int(counts[r, c].argmax())] if counts[r, c].any() else -1 for c in range(GRID)]
+        for r in range(GRID)
+    ]
+    owned = {k for row in owners for k in row}
+    for j, k in enumerate(objects):
+        if k not in owned and counts[..., j].any():
+            r, c = np.unravel_index(int(counts[..., j].argmax()), (GRID, GRID))
+            owners[int(r)][int(c)] = k
     return owners
 
 
