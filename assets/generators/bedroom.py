@@ -153,6 +153,18 @@ def storage_box_3(d: Design) -> Traits:
     return Traits(colors, material, "cuboid")
 
 
+#: A jewellery box's (material, colour), every build of it.
+JEWELRY_BOX_FINISHES = [
+    ("wood", "brown"),
+    ("wood", "beige"),
+    ("leather", "black"),
+    ("leather", "red"),
+    ("leather", "pink"),
+    ("plastic", "white"),
+    ("leather", "blue"),
+]
+
+
 @generator(
     "jewelry_box",
     size=(0.1, 0.22),
@@ -160,17 +172,7 @@ def storage_box_3(d: Design) -> Traits:
     container=True,
 )
 def jewelry_box(d: Design) -> Traits:
-    material, color = d.choice(
-        [
-            ("wood", "brown"),
-            ("wood", "beige"),
-            ("leather", "black"),
-            ("leather", "red"),
-            ("leather", "pink"),
-            ("plastic", "white"),
-            ("leather", "blue"),
-        ]
-    )
+    material, color = d.choice(JEWELRY_BOX_FINISHES)
     lining = d.choice([c for c in ("red", "purple", "black", "beige", "blue") if c != color])
     hx, hy, h = d.uniform(0.05, 0.09), d.uniform(0.035, 0.06), d.uniform(0.04, 0.06)
     t = 0.006
@@ -196,17 +198,7 @@ def jewelry_box_3(d: Design) -> Traits:
     or silver rings with a big gem standing in the slits between them; in front, past a low
     divider, a pearl or gold bead necklace coiled on a velvet cushion (an empty box with a
     mirror in its lid and a dark floor read as a wooden box)."""
-    material, color = d.choice(
-        [
-            ("wood", "brown"),
-            ("wood", "beige"),
-            ("leather", "black"),
-            ("leather", "red"),
-            ("leather", "pink"),
-            ("plastic", "white"),
-            ("leather", "blue"),
-        ]
-    )
+    material, color = d.choice(JEWELRY_BOX_FINISHES)
     velvet = d.choice([c for c in ("red", "purple", "black", "blue") if c != color])
     hx, hy, h = d.uniform(0.072, 0.085), d.uniform(0.04, 0.047), d.uniform(0.046, 0.052)
     t = 0.006
