@@ -110,9 +110,8 @@ def _condition(
     split: str,
     condition: str,
 ) -> EpisodeSpec:
-    """The same scene under ``condition``: only the instruction and the goal change."""
-    if condition == "normal":
-        return spec
+    """The same scene under ``condition`` (not normal): only the instruction and the goal
+    change."""
     if condition == "alternative_target":
         goals = [
             (o, d)
@@ -162,17 +161,17 @@ def rephrase(
     )
 
 
-def _variant(
-    task: TaskSpec,
-    spec: EpisodeSpec,
-    members: Members,
-    rng: np.random.Generator,
-    catalog: Catalog,
-    condition: str,
-    gate: Gate,
+def variant(
+    task: TaskSpec, spec: EpisodeSpec, catalog: Catalog, condition: str, gate: Gate
 ) -> EpisodeSpec:
-    """The certified ``spec`` under ``condition``: the scene stays, its instruction is
-    drawn again until the gate passes it."""
+    """The certified normal ``spec`` under ``condition``: the scene stays, its instruction
+    is drawn again until the gate passes it. The draws come from the seed and the
+    condition alone, so a stored episode and the composer's of its seed get one variant."""
+    check_choice("condition", condition, CONDITIONS)
+    if condition == "normal":
+        return spec
+    rng = np.random.default_rng([spec.seed, CONDITIONS.index(condition)])
+    members = [(catalog[o.uuid], o.role) for o in spec.objects]
     problems: list[str] = []
     for _ in range(MAX_ATTEMPTS):
         try:
@@ -231,6 +230,7 @@ def compose(
                 restarts=8,
                 order=order,
                 accept=accept,
+                backs=[inst.back for inst, _ in members],
             )
         except RuntimeError as exc:
             failures.append(str(exc))
@@ -264,9 +264,7 @@ def compose(
         except VerificationError as exc:
             failures.append(str(exc))
             continue
-        if condition == "normal":
-            return spec
-        return _variant(task, spec, members, rng, catalog, condition, gate)
+        return variant(task, spec, catalog, condition, gate)
     raise CompositionError(
         f"{task.family}: no episode for seed {seed} in split {split!r} after {MAX_ATTEMPTS} "
         f"attempts; last reasons: {failures[-3:]}"

@@ -371,12 +371,6 @@ def _respec(
     env = gym.make(env_id, robot_uids=robot, split=split, obs_mode="state", render_backend="none")
     unwrapped = env.unwrapped
     try:
-        return [
-            unwrapped.perturbed(
-                s if condition == "normal" else unwrapped.sample_episode(s.seed, condition, {}),
-                levels,
-            )
-            for s in specs
-        ]
+        return [unwrapped.perturbed(unwrapped.under_condition(s, condition), levels) for s in specs]
     finally:
         env.close()

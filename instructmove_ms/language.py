@@ -53,6 +53,13 @@ def spaced(text: str) -> str:
     return f" {re.sub(r'[?!.,;:]', ' ', text)} "
 
 
+def says(text: str, word: str) -> bool:
+    """Whether ``text`` says ``word`` as a whole word or as the first part of a hyphenated
+    one ("pink" in "the pink-wrapped candy")."""
+    said = spaced(text)
+    return f" {word} " in said or f" {word}-" in said
+
+
 def pronoun(instance: Instance | None, phrase: str) -> str:
     """ "them" where ``phrase`` names ``instance`` by a plural noun (its longest noun in the
     phrase), else "it"."""

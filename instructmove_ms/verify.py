@@ -23,7 +23,7 @@ from .family import TaskSpec
 from .language import head, named_noun, spaced
 
 #: Bumped whenever a rule of the verifier changes; certificates record it.
-VERIFIER_VERSION = 2
+VERIFIER_VERSION = 3
 
 #: Internal names that must never reach the instruction (whole words).
 FORBIDDEN_WORDS = frozenset(

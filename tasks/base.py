@@ -29,7 +29,7 @@ from instructmove_ms.assets import (
 )
 from instructmove_ms.assets.catalog import Catalog
 from instructmove_ms.assets.sapien_builder import actor_builder
-from instructmove_ms.composer import compose, rephrase
+from instructmove_ms.composer import compose, rephrase, variant
 from instructmove_ms.episode import CONDITIONS, EpisodeSpec, actor_name
 from instructmove_ms.family import TaskSpec
 from instructmove_ms.gpu_physics import check_gpu_physics, uses_gpu_physics
@@ -181,6 +181,11 @@ class InstructMoveEnv(BaseEnv):
             self.agent.workspace,
         )
         return self.perturbed(spec, self.perturbation if perturbation is None else perturbation)
+
+    def under_condition(self, spec: EpisodeSpec, condition: str) -> EpisodeSpec:
+        """The normal episode ``spec`` (stored or sampled) under ``condition``: the same
+        scene, the condition's instruction and goal (see ``composer.variant``)."""
+        return variant(self.task, spec, self.catalog_of(spec), condition, self.certified)
 
     def certified(self, spec: EpisodeSpec) -> EpisodeSpec:
         """``spec`` with the verifier's certificate for this env's robot, judged on the

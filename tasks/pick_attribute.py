@@ -20,7 +20,7 @@ from instructmove_ms.assets.catalog import Catalog, Instance
 from instructmove_ms.assets.expressions import colored
 from instructmove_ms.episode import EpisodeSpec
 from instructmove_ms.family import Cue, Members, TaskSpec
-from instructmove_ms.language import attribute_phrases, attribute_word, names, spaced
+from instructmove_ms.language import attribute_phrases, attribute_word, names, says
 from instructmove_ms.sampler import (
     EACH_OTHER,
     EXTENT_RATIO,
@@ -32,6 +32,14 @@ from instructmove_ms.sampler import (
 
 from .base import InstructMoveEnv
 from .pick_category import PICK_STAGES, PICK_TEMPLATES
+
+
+def _sets_apart(attribute: str, inst: Instance, others: Sequence[Instance]) -> bool:
+    """Whether ``inst``'s material (as it renders) or shape differs from every one of
+    ``others``'."""
+    if attribute == "material":
+        return all(look_differs(inst.material, o.material) for o in others)
+    return all(getattr(o, attribute) != getattr(inst, attribute) for o in others)
 
 
 def _colors_tell_apart(candidates: Sequence[Instance]) -> bool:
@@ -85,9 +93,7 @@ class AttributeCue(Cue):
         candidates = assigned["target"] + assigned["distractor"]
         if not _colors_tell_apart(candidates):
             raise RoleError(f"{target.category}: candidates whose colours do not show apart")
-        if attribute == "material" and not all(
-            look_differs(target.material, o.material) for o in assigned["distractor"]
-        ):
+        if attribute == "material" and not _sets_apart("material", target, assigned["distractor"]):
             raise RoleError(f"{target.category}: materials that render alike")
 
     def phrase(
@@ -97,15 +103,18 @@ class AttributeCue(Cue):
         return options[int(rng.integers(len(options)))]
 
     def alternative(self, cue: dict, members: Members, candidates: Sequence[int], goal: int):
-        """The same attribute where the goal's material or shape is unique among the
-        candidates and has a word, else its colour (pairwise distinct)."""
+        """The same attribute where it sets the goal apart from every other candidate (a
+        material as it renders, as ``matches`` reads it) and has a word, else its colour
+        (pairwise distinct)."""
         inst = members[goal][0]
         others = [members[k][0] for k in candidates if k != goal]
         attribute = cue["attribute"]
-        if attribute in ("material", "shape"):
-            unique = all(getattr(o, attribute) != getattr(inst, attribute) for o in others)
-            if unique and attribute_word(inst, attribute):
-                return cue
+        if (
+            attribute in ("material", "shape")
+            and _sets_apart(attribute, inst, others)
+            and attribute_word(inst, attribute)
+        ):
+            return cue
         return {"attribute": "color"}
 
     def matches(self, spec: EpisodeSpec, catalog: Catalog, k: int) -> bool:
@@ -123,15 +132,13 @@ class AttributeCue(Cue):
                 for o in others
             )
         word = attribute_word(inst, cue["attribute"])
-        if not word or f" {word} " not in spaced(text):
+        if not word or not says(text, word):
             return False
         if cue["attribute"] == "color":
             return _colors_tell_apart([inst, *others]) and all(
                 shown_color(inst) not in o.colors for o in others
             )
-        if cue["attribute"] == "material":
-            return all(look_differs(inst.material, o.material) for o in others)
-        return all(getattr(o, cue["attribute"]) != getattr(inst, cue["attribute"]) for o in others)
+        return _sets_apart(cue["attribute"], inst, others)
 
     def explain(self, spec: EpisodeSpec, catalog: Catalog, k: int) -> dict:
         """The candidate's value of the cue's attribute: its colours, material, shape or
@@ -179,7 +186,8 @@ class PickAttributeEnv(InstructMoveEnv):
       pairwise at least ``appearance.DISTINCT`` apart so that every candidate can be named
       by the colour the camera shows; a material is named only against materials that
       render differently
-    - positions (reference workspace, 0.05 m between footprints), yaw, template, robot joints
+    - positions (reference workspace, 0.05 m between footprints), yaw (an open lid turned away
+      from the robot, as in PickCategory), template, robot joints
     - with ``perturbation=``: lighting, table, background, cameras, robot joints, layout and
       paraphrase at levels 0-3 (``instructmove_ms.perturbation``), drawn from the seed
 

@@ -50,6 +50,9 @@ def test_every_set_is_complete_valid_and_regenerates(env_id, robot):
             assert {**sampled.certificate, "visibility": spec.certificate["visibility"]} == (
                 spec.certificate
             )
+            stored = env.unwrapped.under_condition(spec, "alternative_target")
+            seeded = env.unwrapped.sample_episode(spec.seed, "alternative_target")
+            assert stored == dataclasses.replace(seeded, certificate=stored.certificate)
         env.close()
 
 

@@ -27,6 +27,7 @@ from instructmove_ms.language import (
     is_plural,
     pronoun,
     render,
+    says,
     spaced,
 )
 from instructmove_ms.splits import EVAL_SPLITS
@@ -171,3 +172,10 @@ def test_a_packaged_foods_material_is_its_package():
     ]
     with pytest.raises(ValueError, match="no material phrase"):
         attribute_phrases(biscuits["organic"], "material")  # never "the paper biscuit"
+
+
+def test_a_colour_said_of_a_wrapper_is_said():
+    assert says("take the pink-wrapped chocolate bar", "pink")
+    assert says("take the pink mug, please", "pink")
+    assert not says("take the pinkish mug", "pink")
+    assert not says("take the mug", "pink")
