@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import hashlib
+import math
 import uuid as uuidlib
 from collections.abc import Iterable
 from dataclasses import asdict, dataclass, field, replace
@@ -23,6 +24,9 @@ UUID_NAMESPACE = uuidlib.UUID("6f1c1c9e-3d52-4c55-9c55-6a1e0b1c7a01")
 #: About one instance in five is held out for the unseen_instance split, one category in
 #: five for unseen_category; both decided by a hash so that growth keeps them stable.
 HELD_OUT_MODULUS = 5
+#: A receptacle's part that rises this far (m) above its rim off to one side of the
+#: opening (a lid standing open, a caddy's back) gives it a back (``Instance.back``).
+OVER_RIM = 0.03
 
 
 @dataclass(frozen=True)
@@ -83,6 +87,27 @@ class Instance:
     def dims(self) -> tuple[float, float, float]:
         lo, hi = self.bounds
         return tuple(float(v) for v in hi - lo)
+
+    @cached_property
+    def back(self) -> float | None:
+        """Heading (rad in the instance's frame, 0 along +x) of the side where parts rise
+        ``OVER_RIM`` above a receptacle's rim beyond its opening (a lid standing open), as
+        the nearest of the four axis directions; None where nothing does."""
+        if self.interior is None:
+            return None
+        rim = self.interior.center[2] + self.interior.height
+        tall = [
+            p for p in self.parts if not p.visual_only and union_bounds([p])[1][2] > rim + OVER_RIM
+        ]
+        if not tall:
+            return None
+        lo, hi = union_bounds(tall)
+        middle = (lo[:2] + hi[:2]) / 2 - np.asarray(self.interior.center[:2])
+        beyond = middle / np.asarray(self.interior.half)
+        axis = int(np.argmax(np.abs(beyond)))
+        if abs(beyond[axis]) <= 1.0:
+            return None
+        return (0.0, math.pi / 2)[axis] + (math.pi if beyond[axis] < 0 else 0.0)
 
     @property
     def height(self) -> float:

@@ -32,13 +32,21 @@ class Placement:
         return (self.x, self.y, z, math.cos(self.yaw / 2), 0.0, 0.0, math.sin(self.yaw / 2))
 
 
-def random_placement(rng: np.random.Generator, workspace: Workspace) -> Placement:
-    """A uniformly drawn centre in ``workspace`` and yaw."""
-    return Placement(
-        float(rng.uniform(*workspace.x)),
-        float(rng.uniform(*workspace.y)),
-        float(rng.uniform(-math.pi, math.pi)),
-    )
+#: Yaw (rad) either side of a back turned straight away from the robot.
+BACK_SPREAD = math.pi / 4
+
+
+def random_placement(
+    rng: np.random.Generator, workspace: Workspace, back: float | None = None
+) -> Placement:
+    """A uniformly drawn centre in ``workspace`` and yaw; an object whose ``back`` (heading
+    in its frame, see ``catalog.Instance.back``) is given turns it away from the robot's
+    base, within ``BACK_SPREAD``, as a person sets down a bin with its open lid behind."""
+    x, y = float(rng.uniform(*workspace.x)), float(rng.uniform(*workspace.y))
+    if back is None:
+        return Placement(x, y, float(rng.uniform(-math.pi, math.pi)))
+    away = math.atan2(y, x) - back
+    return Placement(x, y, away + float(rng.uniform(-BACK_SPREAD, BACK_SPREAD)))
 
 
 def corners(half: tuple[float, float], p: Placement) -> np.ndarray:
@@ -91,12 +99,15 @@ def sample_layout(
     restarts: int = 64,
     order: list[int] | None = None,
     accept: Accept | None = None,
+    backs: list[float | None] | None = None,
 ) -> list[Placement]:
     """Place every footprint with at least ``clearance`` between any two.
 
     Objects are placed in ``order`` (default: largest footprint first), each also passing
-    ``accept`` (relation constraints); the result follows the input order.
+    ``accept`` (relation constraints), each with a ``backs`` entry turned with that back
+    away from the robot (``random_placement``); the result follows the input order.
     """
+    backs = backs or [None] * len(halves)
     if order is None:
         order = sorted(range(len(halves)), key=lambda i: -halves[i][0] * halves[i][1])
     pad = clearance / 2
@@ -105,7 +116,7 @@ def sample_layout(
         placed: dict[int, tuple[Placement, np.ndarray]] = {}
         for i in order:
             for _ in range(tries_per_object):
-                p = random_placement(rng, workspace)
+                p = random_placement(rng, workspace, backs[i])
                 quad = corners(padded[i], p)
                 if all(_separated(quad, other) for _, other in placed.values()) and (
                     accept is None or accept(i, p, {k: v[0] for k, v in placed.items()})

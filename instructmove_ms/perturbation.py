@@ -370,7 +370,7 @@ def _add_distractors(
     ws, z, added = ctx.workspace, spec.objects[0].pose[2], []
     for inst in extra:
         for _ in range(TRIES_PER_PLACE):
-            place = random_placement(rng, ws)
+            place = random_placement(rng, ws, inst.back)
             quad = corners(_footprint(ctx, inst.uuid), place)
             if all(gap(quad, q) > 0 for q in quads):
                 quads.append(quad)

@@ -94,7 +94,8 @@ class PickCategoryEnv(InstructMoveEnv):
     **Randomizations:**
     - target and distractor categories and instances, drawn from the split's pool
     - object positions (reference workspace x 0.25..0.55 m, y -0.35..0.35 m, at least 0.05 m
-      between footprints) and yaw
+      between footprints) and yaw (a lid standing open or a caddy's back turned away from
+      the robot, within 45 degrees)
     - the instruction's template and the category noun
     - robot initial joints: rest pose plus Gaussian noise (``robot_init_qpos_noise``)
     - with ``perturbation=``: lighting, table, background, cameras, robot joints, layout and

@@ -129,7 +129,8 @@ class PickSpatialEnv(InstructMoveEnv):
       relation
     - positions: the target holds the relation and the distractor its opposite: a direction
       relation within 45 deg of its direction, at least 0.06 m along it and within 0.35 m
-      of the reference; near < 0.16 m, far > 0.26 m; yaw, template, robot joints
+      of the reference; near < 0.16 m, far > 0.26 m; yaw (an open lid turned away
+      from the robot, as in PickCategory), template, robot joints
     - with ``perturbation=``: lighting, table, background, cameras, robot joints, layout and
       paraphrase at levels 0-3 (``instructmove_ms.perturbation``), drawn from the seed
 

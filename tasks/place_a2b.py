@@ -84,7 +84,8 @@ class PlaceA2BEnv(InstructMoveEnv):
     **Randomizations:**
     - objects (small enough for every receptacle) and receptacles (interiors at least 0.1 m
       wide), from the split's pools
-    - positions, yaw, template and the preposition (on for flat destinations), robot joints
+    - positions, yaw (a lid standing open or a caddy's back turned away from the robot,
+      within 45 degrees), template and the preposition (on for flat destinations), robot joints
     - with ``perturbation=``: lighting, table, background, cameras, robot joints, layout and
       paraphrase at levels 0-3 (``instructmove_ms.perturbation``), drawn from the seed
 

@@ -4,9 +4,11 @@ from __future__ import annotations
 
 import math
 
+import gymnasium as gym
 import numpy as np
 import pytest
 
+import instructmove_ms  # noqa: F401
 from instructmove_ms.assets import generate_instance, load_snapshot, taxonomy
 from instructmove_ms.assets.catalog import instance_uuid, is_held_out_category
 from instructmove_ms.assets.generators import GENERATORS
@@ -146,3 +148,28 @@ def test_a_cup_that_fits_the_hand_is_also_held_around_its_whole_rim():
             assert g.width >= hi[axis] - lo[axis] - 1e-9  # the fingers close outside the rim
             assert np.allclose(g.center[:2], 0.5 * (lo + hi)[:2], atol=0.02)
     assert not enveloping_grasps(load_snapshot().of_category("apple")[0], max_opening=0.1)
+
+
+def test_a_lid_standing_open_gives_a_bin_its_back_and_scenes_turn_it_from_the_robot():
+    catalog = load_snapshot()
+    assert [b.back for b in catalog.of_category("waste_bin")] == [math.pi] * 10  # hinge at -x
+    assert load_snapshot("detailed").of_category("waste_bin")[0].back is None  # no lid
+    assert all(b.back is None for b in catalog.of_category("basket"))  # a handle over the middle
+    env = gym.make("PlaceA2B-InstructMove", obs_mode="state", render_backend="none")
+    checked = 0
+    for seed in range(60):
+        spec = env.unwrapped.sample_episode(seed)
+        for obj in spec.objects:
+            inst = catalog[obj.uuid]
+            if inst.category != "waste_bin":
+                continue
+            x, y, _, qw, _, _, qz = obj.pose
+            yaw = 2 * math.atan2(qz, qw)
+            (lid,) = [p for p in inst.parts if p.name == "lid"]
+            lx, ly = lid.pos[0], lid.pos[1]
+            c, s = math.cos(yaw), math.sin(yaw)
+            lid_at = np.hypot(x + lx * c - ly * s, y + lx * s + ly * c)
+            assert lid_at > np.hypot(x, y) + 0.05, (seed, "the open lid stands behind the bin")
+            checked += 1
+    env.close()
+    assert checked >= 5

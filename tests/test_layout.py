@@ -3,11 +3,19 @@
 from __future__ import annotations
 
 import itertools
+import math
 
 import numpy as np
 import pytest
 
-from instructmove_ms.layout import LayoutError, Workspace, corners, gap, sample_layout
+from instructmove_ms.layout import (
+    BACK_SPREAD,
+    LayoutError,
+    Workspace,
+    corners,
+    gap,
+    sample_layout,
+)
 
 
 def test_layouts_respect_clearance_and_bounds():
@@ -37,3 +45,18 @@ def test_impossible_layout_raises_with_numbers():
     rng = np.random.default_rng(0)
     with pytest.raises(LayoutError, match="could not place 8 objects with 0.05 m"):
         sample_layout(rng, [(0.12, 0.12)] * 8, Workspace(), 0.05, tries_per_object=20, restarts=3)
+
+
+def test_an_object_with_a_back_turns_it_away_from_the_robot_and_others_turn_freely():
+    rng = np.random.default_rng(1)
+    ws = Workspace()
+    away, free = [], []
+    for _ in range(40):
+        places = sample_layout(rng, [(0.05, 0.05), (0.03, 0.02)], ws, 0.05, backs=[math.pi, None])
+        bin_, other = places
+        heading = bin_.yaw + math.pi  # where the back points, in the robot's frame
+        off = math.remainder(heading - math.atan2(bin_.y, bin_.x), 2 * math.pi)
+        away.append(abs(off))
+        free.append(abs(math.remainder(other.yaw - math.atan2(other.y, other.x), 2 * math.pi)))
+    assert max(away) <= BACK_SPREAD + 1e-9
+    assert max(free) > math.pi / 2, "an object without a back faces any way"

@@ -24,6 +24,7 @@ from instructmove_ms.perturbation import (
     parse_levels,
     perturb,
 )
+from instructmove_ms.relations import CONE
 from instructmove_ms.tasks import TASKS
 from instructmove_ms.verify import ambiguous_nouns, verify
 
@@ -183,6 +184,13 @@ def _no_unseen_phrase_passes(spec: EpisodeSpec, catalog) -> bool:
     return False
 
 
+def _relation_at_the_edge(spec: EpisodeSpec) -> bool:
+    """Whether the goal's relation to the reference holds within a degree of the cone's
+    edge, where nearly every draw that moves all three objects breaks it."""
+    (goal,) = [c for c in spec.certificate["candidates"] if c["index"] == spec.target]
+    return "angle" in goal and goal["angle"] >= CONE - 1.0
+
+
 @pytest.mark.parametrize("env_id", sorted(TASKS))
 def test_every_perturbed_episode_of_200_passes_the_verifier(env_id):
     env = gym.make(env_id, obs_mode="state", render_backend="none")
@@ -195,17 +203,21 @@ def test_every_perturbed_episode_of_200_passes_the_verifier(env_id):
             try:
                 spec = unwrapped.sample_episode(seed, perturbation={axis: 3})
             except PerturbationError:
-                # only a rewording the unseen pool cannot give is refused (PickCategory
-                # seed 59: every unseen phrase of its watering can says "can", as does the
-                # can of coke beside it)
-                assert axis == "language", (seed, axis)
+                # refused only where no draw can pass: a rewording the unseen pool cannot
+                # give (PickCategory seed 59: every unseen phrase of its watering can says
+                # "can", as does the can of coke beside it), or a move of a relation that
+                # holds at the very edge of its cone (PickSpatial seed 133: 44.9 degrees)
                 plain = unwrapped.sample_episode(seed)
-                assert _no_unseen_phrase_passes(plain, unwrapped.catalog), seed
+                if axis == "layout":
+                    assert _relation_at_the_edge(plain), seed
+                else:
+                    assert axis == "language", (seed, axis)
+                    assert _no_unseen_phrase_passes(plain, unwrapped.catalog), seed
                 refused += 1
                 continue
             assert verify(spec, unwrapped.catalog, unwrapped.task, opening) == [], (seed, axis)
     env.close()
-    assert refused <= 4, "at most 2% of the 200 language draws"
+    assert refused <= 4, "at most 2% of the 200 seeds"
 
 
 def test_eval_sweep_reports_every_level_against_the_same_episodes(tmp_path, capsys):
