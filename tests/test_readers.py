@@ -16,7 +16,7 @@ from instructmove_ms.heldout import SET_VERSION
 from instructmove_ms.readers import material
 from instructmove_ms.readers.briefs import BRIEFS
 from instructmove_ms.readers.names import accepted_names, first_guess, names_category, normalise
-from instructmove_ms.readers.pictures import GRID, cell_owners
+from instructmove_ms.readers.pictures import GRID, cell_owners, cells_holding_most
 from instructmove_ms.readers.score import found, judgement, score
 
 
@@ -118,6 +118,20 @@ def test_an_episode_answer_names_the_cell_its_object_holds():
     owners = cell_owners(seg, {7: 0, 9: 1, 5: 2})
     assert owners[3][3] == 2 and sum(row.count(2) for row in owners) == 1
     assert owners[0][1] == 0 and owners[7][0] == 1  # the others keep theirs
+    # the cell holding most of an object counts where another object holds more of it
+    seg[:] = 0
+    seg[8:16, 22:24] = 7  # object 0: 16 pixels in cell C2 (alone) ...
+    seg[8:11, 24:32] = 7  # ... and 24 in cell D2,
+    seg[11:16, 24:32] = 9  # where object 1 has 40
+    most = cells_holding_most(seg, {7: 0, 9: 1})
+    assert most == {"0": [1, 3], "1": [1, 3]}
+    owners = cell_owners(seg, {7: 0, 9: 1})
+    assert owners[1][2] == 0 and owners[1][3] == 1
+    item = {"target": 0, "destination": -1, "owners": [owners], "most": [most]}
+    assert found("1 D2", item) and found("1 C2", item) and not found("1 E2", item)
+    assert not found("1 D2", {**item, "most": [{}]}), "an older key: owners alone"
+    item = {"target": 1, "destination": -1, "owners": [owners], "most": [most]}
+    assert found("1 D2", item) and not found("1 C2", item)
 
 
 def _small_catalog(categories):
@@ -185,6 +199,9 @@ def test_instructions_and_episodes_are_drawn_from_the_seed(tmp_path):
             if owners[r][c] == item["target"]
         ]
         assert cells, "the target holds a cell in some camera"
+        for cam, owners in enumerate(item["owners"]):  # the cell holding most of each object
+            for k, (r, c) in item["most"][cam].items():
+                assert any(int(k) in row for row in owners) and 0 <= r < GRID and 0 <= c < GRID
     assert (tmp_path / "e" / "reader" / "episode_2.png").is_file()
 
 

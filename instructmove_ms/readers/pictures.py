@@ -58,11 +58,8 @@ def ruled(image: np.ndarray, title: str) -> np.ndarray:
     return out
 
 
-def cell_owners(segmentation: np.ndarray, ids: dict[int, int]) -> list[list[int]]:
-    """Per grid cell of ``segmentation`` (H, W per-scene ids), the object (the value of
-    ``ids``, keyed by per-scene id) with the most pixels in it, or -1 for none; an object
-    the camera shows that holds the most pixels of no cell gets the cell that holds most of
-    it (what a reader is asked to name), so every object shown owns a cell."""
+def _cell_counts(segmentation: np.ndarray, ids: dict[int, int]) -> np.ndarray:
+    """(GRID, GRID, objects) pixels of each object of ``ids`` in each grid cell."""
     h, w = segmentation.shape
     counts = np.zeros((GRID, GRID, len(ids)), dtype=np.int64)
     for r in range(GRID):
@@ -71,6 +68,15 @@ def cell_owners(segmentation: np.ndarray, ids: dict[int, int]) -> list[list[int]
                 r * h // GRID : (r + 1) * h // GRID, c * w // GRID : (c + 1) * w // GRID
             ]
             counts[r, c] = [int((cell == sid).sum()) for sid in ids]
+    return counts
+
+
+def cell_owners(segmentation: np.ndarray, ids: dict[int, int]) -> list[list[int]]:
+    """Per grid cell of ``segmentation`` (H, W per-scene ids), the object (the value of
+    ``ids``, keyed by per-scene id) with the most pixels in it, or -1 for none; an object
+    the camera shows that holds the most pixels of no cell gets the cell that holds most of
+    it (what a reader is asked to name), so every object shown owns a cell."""
+    counts = _cell_counts(segmentation, ids)
     objects = list(ids.values())
     owners = [
         [objects[int(counts[r, c].argmax())] if counts[r, c].any() else -1 for c in range(GRID)]
@@ -82,6 +88,18 @@ def cell_owners(segmentation: np.ndarray, ids: dict[int, int]) -> list[list[int]
             r, c = np.unravel_index(int(counts[..., j].argmax()), (GRID, GRID))
             owners[int(r)][int(c)] = k
     return owners
+
+
+def cells_holding_most(segmentation: np.ndarray, ids: dict[int, int]) -> dict[str, list[int]]:
+    """Per object the camera shows (the value of ``ids``, as a string key), the [row,
+    column] of the grid cell holding most of its pixels: the cell the brief asks for, which
+    another object may hold more of."""
+    counts = _cell_counts(segmentation, ids)
+    return {
+        str(k): [int(v) for v in np.unravel_index(int(counts[..., j].argmax()), (GRID, GRID))]
+        for j, k in enumerate(ids.values())
+        if counts[..., j].any()
+    }
 
 
 def write_pages(

@@ -50,7 +50,8 @@ def judgement(answer: str) -> str | None:
 
 def found(answer: str, item: dict) -> bool:
     """Whether an episode answer (``2 C4`` or ``2 C4 / 1 F6``) points at the target (and
-    the destination, where the episode has one)."""
+    the destination, where the episode has one): a cell the object holds most of, or
+    (where the key records it) the cell holding most of the object."""
     wanted = [item["target"]] + ([item["destination"]] if item["destination"] >= 0 else [])
     parts = answer.split("/")
     if len(parts) < len(wanted):
@@ -63,7 +64,8 @@ def found(answer: str, item: dict) -> bool:
         if not 0 <= camera < len(item["owners"]):
             return False
         row, col = int(match.group(3)) - 1, COLUMNS.index(match.group(2).upper())
-        if row >= GRID or item["owners"][camera][row][col] != k:
+        most = item.get("most", [{}] * len(item["owners"]))[camera].get(str(k))
+        if row >= GRID or (item["owners"][camera][row][col] != k and most != [row, col]):
             return False
     return True
 
