@@ -109,6 +109,12 @@ class Instance:
             return None
         return (0.0, math.pi / 2)[axis] + (math.pi if beyond[axis] < 0 else 0.0)
 
+    def color_share(self, color: str) -> float:
+        """The share of the instance's surface (its parts' areas, prints included) in
+        ``color``: a stated colour or one a smaller part shows."""
+        total = sum(p.area for p in self.parts)
+        return sum(p.area for p in self.parts if p.color == color) / total
+
     @property
     def height(self) -> float:
         return self.dims[2]

@@ -42,11 +42,24 @@ def _sets_apart(attribute: str, inst: Instance, others: Sequence[Instance]) -> b
     return all(getattr(o, attribute) != getattr(inst, attribute) for o in others)
 
 
+#: The most of another candidate's surface that may show the colour a candidate is named
+#: by ("the clear bottle" beside bottles whose shoulders are clear too is no name).
+SHARED_COLOR = 0.2
+
+
 def _colors_tell_apart(candidates: Sequence[Instance]) -> bool:
-    """Whether every candidate shows a colour and the rendered colours of every two are
-    ``DISTINCT`` apart."""
-    return all(shown_color(c) for c in candidates) and all(
-        delta_e(lab_of(a), lab_of(b)) >= DISTINCT for a, b in combinations(candidates, 2)
+    """Whether every candidate shows a colour, the rendered colours of every two are
+    ``DISTINCT`` apart and no candidate's colour covers more than ``SHARED_COLOR`` of
+    another's surface."""
+    return (
+        all(shown_color(c) for c in candidates)
+        and all(delta_e(lab_of(a), lab_of(b)) >= DISTINCT for a, b in combinations(candidates, 2))
+        and all(
+            b.color_share(shown_color(a)) <= SHARED_COLOR
+            for a in candidates
+            for b in candidates
+            if b is not a
+        )
     )
 
 
@@ -55,8 +68,9 @@ class AttributeCue(Cue):
     """The instruction names the goal's value of one attribute ("the red mug", "the biggest
     apple"), drawn per episode from ``attributes``; every distractor differs from the target
     in it (sizes by ``EXTENT_RATIO`` in the largest dimension, materials in how they
-    render) and the candidates' rendered colours are pairwise ``DISTINCT``, so that any
-    candidate can be named by the colour the camera shows of it."""
+    render) and the candidates' rendered colours are pairwise ``DISTINCT``, none covering
+    more than ``SHARED_COLOR`` of another's surface, so that any candidate can be named by
+    the colour the camera shows of it."""
 
     attributes: tuple[str, ...] = ("color", "size", "shape", "material")
 
@@ -183,9 +197,9 @@ class PickAttributeEnv(InstructMoveEnv):
     **Randomizations:**
     - the category, the instances and the attribute named (among those that tell the target
       apart); sizes differ by at least 1.3x in the largest dimension; rendered colours are
-      pairwise at least ``appearance.DISTINCT`` apart so that every candidate can be named
-      by the colour the camera shows; a material is named only against materials that
-      render differently
+      pairwise at least ``appearance.DISTINCT`` apart, none covering more than a fifth of
+      another candidate's surface, so that every candidate can be named by the colour the
+      camera shows; a material is named only against materials that render differently
     - positions (reference workspace, 0.05 m between footprints), yaw (an open lid turned away
       from the robot, as in PickCategory), template, robot joints
     - with ``perturbation=``: lighting, table, background, cameras, robot joints, layout and

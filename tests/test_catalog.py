@@ -12,6 +12,7 @@ import instructmove_ms  # noqa: F401
 from instructmove_ms.assets import generate_instance, load_snapshot, taxonomy
 from instructmove_ms.assets.catalog import instance_uuid, is_held_out_category
 from instructmove_ms.assets.generators import GENERATORS
+from instructmove_ms.assets.parts import Part
 from instructmove_ms.assets.snapshot import DEFAULT_SNAPSHOT, frozen_as
 from instructmove_ms.assets.vocab import COLORS, SHAPES
 from instructmove_ms.sampler import split_pools
@@ -173,3 +174,17 @@ def test_a_lid_standing_open_gives_a_bin_its_back_and_scenes_turn_it_from_the_ro
             checked += 1
     env.close()
     assert checked >= 5
+
+
+def test_part_areas_and_colour_shares():
+    box = Part("b", "box", (0.01, 0.02, 0.03), (0, 0, 0), (1, 0, 0, 0), "plastic", "red", (1, 0, 0))
+    assert box.area == pytest.approx(2 * (0.02 * 0.04 + 0.04 * 0.06 + 0.02 * 0.06))
+    ball = Part("s", "sphere", (0.02,), (0, 0, 0), (1, 0, 0, 0), "plastic", "blue", (0, 0, 1))
+    egg = Part("e", "ellipsoid", (0.02,) * 3, (0, 0, 0), (1, 0, 0, 0), "plastic", "blue", (0, 0, 1))
+    assert ball.area == pytest.approx(4 * math.pi * 0.02**2)
+    assert egg.area == pytest.approx(ball.area, rel=0.01)
+    can = Part("c", "cylinder", (0.02, 0.05), (0, 0, 0), (1, 0, 0, 0), "metal", "gray", (0.5,) * 3)
+    assert can.area == pytest.approx(2 * math.pi * 0.02 * 0.1 + 2 * math.pi * 0.02**2)
+    mug = next(i for i in load_snapshot().of_category("mug"))
+    shares = {c: mug.color_share(c) for c in {p.color for p in mug.parts}}
+    assert sum(shares.values()) == pytest.approx(1.0) and mug.color_share("none of them") == 0

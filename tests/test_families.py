@@ -10,9 +10,11 @@ import pytest
 
 import instructmove_ms  # noqa: F401
 from conftest import verify_spec
+from instructmove_ms.assets.appearance import shown_color
 from instructmove_ms.language import spaced
 from instructmove_ms.splits import EVAL_SPLITS
 from instructmove_ms.tasks import TASKS
+from instructmove_ms.tasks.pick_attribute import SHARED_COLOR
 from instructmove_ms.verify import VERIFIER_VERSION
 
 FAMILIES = sorted(TASKS)
@@ -51,6 +53,10 @@ def test_200_episodes_per_family_and_split_pass_the_gate_with_a_certificate(env_
             named = [d["index"] for d in cert["destinations"] if d["named"]]
             assert named == [spec.goal_destination] == [cert["goal_destination"]]
         cues.add(spec.cue.get("attribute") or spec.cue.get("relation") or spec.cue["kind"])
+        if spec.cue.get("attribute") == "color":  # no other candidate shows much of it
+            named = shown_color(catalog[spec.objects[spec.target].uuid])
+            others = [catalog[spec.objects[k].uuid] for k in spec.candidates if k != spec.target]
+            assert all(o.color_share(named) <= SHARED_COLOR for o in others), spec.instruction
         if seed % 10 == 0:  # another goal of the same scene can be phrased and passes too
             other = env.unwrapped.under_condition(spec, "alternative_target")
             assert verify_spec(other, catalog) == [] and other.objects == spec.objects
