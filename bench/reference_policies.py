@@ -26,10 +26,11 @@ def main() -> None:
     parser.add_argument("--episodes", type=int, default=100, help="episodes per family")
     parser.add_argument("--split", default="seen")
     parser.add_argument("--robot", default=None, help="one robot (default: each family's)")
+    parser.add_argument("--task", default=None, help="one env id (default: every family)")
     args = parser.parse_args()
     runs: dict[str, list[dict]] = {name: [] for name in POLICIES}
     with tempfile.TemporaryDirectory() as tmp:
-        for task in TASKS:
+        for task in [args.task] if args.task else TASKS:
             for name in POLICIES:
                 out = Path(tmp) / task / name
                 policy = REFERENCE_POLICIES[name]()
