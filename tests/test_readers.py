@@ -16,7 +16,7 @@ from instructmove_ms.heldout import SET_VERSION
 from instructmove_ms.readers import material
 from instructmove_ms.readers.briefs import BRIEFS
 from instructmove_ms.readers.names import accepted_names, first_guess, names_category, normalise
-from instructmove_ms.readers.pictures import GRID, cell_owners, cells_holding_most
+from instructmove_ms.readers.pictures import GRID, cell_key
 from instructmove_ms.readers.score import found, judgement, score
 
 
@@ -104,7 +104,7 @@ def test_an_episode_answer_names_the_cell_its_object_holds():
     seg[0:8, 8:16] = 7  # object 0 fills cell B1
     seg[56:64, 0:6] = 9  # object 1 holds most of cell A8 ...
     seg[56:64, 6:8] = 7  # ... where object 0 has less
-    owners = cell_owners(seg, {7: 0, 9: 1})
+    owners, _ = cell_key(seg, {7: 0, 9: 1})
     assert len(owners) == GRID and owners[0][1] == 0 and owners[7][0] == 1 and owners[3][3] == -1
     pick = {"target": 0, "destination": -1, "owners": [owners]}
     assert found("1 B1", pick) and found("1 b1", pick)
@@ -115,7 +115,7 @@ def test_an_episode_answer_names_the_cell_its_object_holds():
     # of it (what the reader is asked to name)
     seg[24:32, 24:32] = 7  # object 0 fills cell D4 ...
     seg[24:26, 24:28] = 5  # ... where object 2, small, lies
-    owners = cell_owners(seg, {7: 0, 9: 1, 5: 2})
+    owners, _ = cell_key(seg, {7: 0, 9: 1, 5: 2})
     assert owners[3][3] == 2 and sum(row.count(2) for row in owners) == 1
     assert owners[0][1] == 0 and owners[7][0] == 1  # the others keep theirs
     # the cell holding most of an object counts where another object holds more of it
@@ -123,9 +123,8 @@ def test_an_episode_answer_names_the_cell_its_object_holds():
     seg[8:16, 22:24] = 7  # object 0: 16 pixels in cell C2 (alone) ...
     seg[8:11, 24:32] = 7  # ... and 24 in cell D2,
     seg[11:16, 24:32] = 9  # where object 1 has 40
-    most = cells_holding_most(seg, {7: 0, 9: 1})
+    owners, most = cell_key(seg, {7: 0, 9: 1})
     assert most == {"0": [1, 3], "1": [1, 3]}
-    owners = cell_owners(seg, {7: 0, 9: 1})
     assert owners[1][2] == 0 and owners[1][3] == 1
     item = {"target": 0, "destination": -1, "owners": [owners], "most": [most]}
     assert found("1 D2", item) and found("1 C2", item) and not found("1 E2", item)

@@ -21,15 +21,7 @@ from ..files import write_json, write_text
 from ..heldout import SET_VERSION, load_set
 from ..splits import EVAL_SEED_BASE, EVAL_SPLITS
 from . import CAMERAS, SOURCES, briefs
-from .pictures import (
-    boxed,
-    cell_owners,
-    cells_holding_most,
-    numbered,
-    ruled,
-    write_pages,
-    write_png,
-)
+from .pictures import boxed, cell_key, numbered, ruled, write_pages, write_png
 
 #: Scene cameras, then the others, at the resolution policies are trained on.
 POLICY_RESOLUTION = 224
@@ -269,8 +261,9 @@ def episodes(seed: int, out: Path, count: int = 40, version: int | None = None) 
             pictures = [ruled(views.rgb[c], f"camera {j + 1}") for j, c in enumerate(views.cameras)]
             write_png(folder / f"episode_{n}.png", np.concatenate(pictures, axis=1))
             lines.append(f"{n}: {spec.instruction}")
-            owners = [cell_owners(views.segmentation[c], views.ids) for c in views.cameras]
-            most = [cells_holding_most(views.segmentation[c], views.ids) for c in views.cameras]
+            owners, most = zip(
+                *(cell_key(views.segmentation[c], views.ids) for c in views.cameras), strict=True
+            )
             items.append(
                 {
                     "n": n,
@@ -279,8 +272,8 @@ def episodes(seed: int, out: Path, count: int = 40, version: int | None = None) 
                     "target": spec.target,
                     "destination": spec.goal_destination,
                     "cameras": list(views.cameras),
-                    "owners": owners,
-                    "most": most,
+                    "owners": list(owners),
+                    "most": list(most),
                 }
             )
     finally:

@@ -58,8 +58,16 @@ def ruled(image: np.ndarray, title: str) -> np.ndarray:
     return out
 
 
-def _cell_counts(segmentation: np.ndarray, ids: dict[int, int]) -> np.ndarray:
-    """(GRID, GRID, objects) pixels of each object of ``ids`` in each grid cell."""
+def cell_key(
+    segmentation: np.ndarray, ids: dict[int, int]
+) -> tuple[list[list[int]], dict[str, list[int]]]:
+    """What an episode answer is scored against, per grid cell of ``segmentation`` (H, W
+    per-scene ids): the owners, per cell the object (the value of ``ids``, keyed by
+    per-scene id) with the most pixels in it, or -1 for none, where an object the camera
+    shows that holds the most pixels of no cell gets the cell that holds most of it, so
+    every object shown owns a cell; and per object shown (as a string key) the [row,
+    column] of the cell holding most of it, which the brief asks for and another object may
+    hold more of."""
     h, w = segmentation.shape
     counts = np.zeros((GRID, GRID, len(ids)), dtype=np.int64)
     for r in range(GRID):
@@ -68,38 +76,22 @@ def _cell_counts(segmentation: np.ndarray, ids: dict[int, int]) -> np.ndarray:
                 r * h // GRID : (r + 1) * h // GRID, c * w // GRID : (c + 1) * w // GRID
             ]
             counts[r, c] = [int((cell == sid).sum()) for sid in ids]
-    return counts
-
-
-def cell_owners(segmentation: np.ndarray, ids: dict[int, int]) -> list[list[int]]:
-    """Per grid cell of ``segmentation`` (H, W per-scene ids), the object (the value of
-    ``ids``, keyed by per-scene id) with the most pixels in it, or -1 for none; an object
-    the camera shows that holds the most pixels of no cell gets the cell that holds most of
-    it (what a reader is asked to name), so every object shown owns a cell."""
-    counts = _cell_counts(segmentation, ids)
     objects = list(ids.values())
     owners = [
         [objects[int(counts[r, c].argmax())] if counts[r, c].any() else -1 for c in range(GRID)]
         for r in range(GRID)
     ]
-    owned = {k for row in owners for k in row}
-    for j, k in enumerate(objects):
-        if k not in owned and counts[..., j].any():
-            r, c = np.unravel_index(int(counts[..., j].argmax()), (GRID, GRID))
-            owners[int(r)][int(c)] = k
-    return owners
-
-
-def cells_holding_most(segmentation: np.ndarray, ids: dict[int, int]) -> dict[str, list[int]]:
-    """Per object the camera shows (the value of ``ids``, as a string key), the [row,
-    column] of the grid cell holding most of its pixels: the cell the brief asks for, which
-    another object may hold more of."""
-    counts = _cell_counts(segmentation, ids)
-    return {
+    most = {
         str(k): [int(v) for v in np.unravel_index(int(counts[..., j].argmax()), (GRID, GRID))]
-        for j, k in enumerate(ids.values())
+        for j, k in enumerate(objects)
         if counts[..., j].any()
     }
+    owned = {k for row in owners for k in row}
+    for k in objects:
+        if k not in owned and str(k) in most:
+            r, c = most[str(k)]
+            owners[r][c] = k
+    return owners, most
 
 
 def write_pages(
