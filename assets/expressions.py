@@ -46,22 +46,37 @@ MATERIAL_ADJECTIVE = {
 }
 #: Material names and adjectives.
 MATERIAL_WORDS = frozenset(MATERIAL_ADJECTIVE) | frozenset(MATERIAL_ADJECTIVE.values())
-#: Shape words as a person says them before a noun.
+#: Shape words as a person says them before a noun ("the round pen holder", never "the
+#: cylindrical pen holder").
 SHAPE_ADJECTIVE = {
     "sphere": "round",
     "hemisphere": "dome-shaped",
     "ellipsoid": "oval",
-    "cylinder": "cylindrical",
+    "cylinder": "round",
     "cone": "conical",
     "cube": "cube-shaped",
     "cuboid": "rectangular",
-    "disk": "round flat",
+    "disk": "round",
     "ring": "ring-shaped",
     "L-shape": "L-shaped",
     "T-shape": "T-shaped",
     "flat": "flat",
     "elongated": "long",
 }
+#: What tells a category's shapes apart to a person, where the plain shape word does not
+#: ("the sticky tape dispenser" beside a roll, never "the long tape roll"; "the thin
+#: chocolate bar" beside a thick one); None where people have no word for the shape (a
+#: roll of tape is just that, never "the ring-shaped tape roll" nor "the loose one").
+CATEGORY_SHAPES: dict[str, dict[str, str | None]] = {
+    "scotch_tape": {"ring": None, "elongated": "dispenser"},
+    "chocolate": {"cuboid": "thick", "flat": "thin"},
+    "cutting_board": {"flat": "rectangular"},
+    "candy": {"disk": "flat"},
+    "charging_head": {"cube": "square"},
+}
+#: Shape words that are nouns, said after a noun of stuff as one compound: what is picked
+#: up is the dispenser, not the roll in it ("the sticky tape dispenser").
+SHAPE_NOUNS = frozenset({"dispenser"})
 #: Materials people name when they describe an object ("the wooden spoon", "the metal
 #: bottle opener"); plastic, paper, rubber and the like go unsaid unless they tell two
 #: candidates apart (the attribute cue), and so does any material of a food.
@@ -140,6 +155,14 @@ def count_nouns(inst: Instance) -> tuple[str, ...]:
     return tuple(dict.fromkeys(out)) or said_nouns(inst)
 
 
+def shape_nouns(inst: Instance) -> tuple[str, ...]:
+    """The nouns a shape phrase of ``inst`` is said with: ``count_nouns`` ("thin chocolate
+    bar"), or the nouns of stuff its shape noun compounds with ("sticky tape dispenser")."""
+    if shape_word(inst) in SHAPE_NOUNS:
+        return tuple(n for n in said_nouns(inst) if n in MEASURES)
+    return count_nouns(inst)
+
+
 def _words(text: str) -> set[str]:
     return set(text.replace("-", " ").split())
 
@@ -160,6 +183,13 @@ def said_material(inst: Instance) -> str | None:
     if inst.domain == "food" or inst.material not in NOTABLE_MATERIALS:
         return None
     return MATERIAL_ADJECTIVE[inst.material]
+
+
+def shape_word(inst: Instance) -> str | None:
+    """How a person says ``inst``'s shape to tell it from others of its category (None if
+    people have no word for it)."""
+    said = CATEGORY_SHAPES.get(inst.category, {})
+    return said[inst.shape] if inst.shape in said else SHAPE_ADJECTIVE.get(inst.shape)
 
 
 def modified(words: str, noun: str) -> str | None:

@@ -10,7 +10,7 @@ from .assets.appearance import shown_color
 from .assets.catalog import Instance
 from .assets.expressions import (
     MATERIAL_ADJECTIVE,
-    SHAPE_ADJECTIVE,
+    SHAPE_NOUNS,
     color_word,
     colored,
     contents,
@@ -19,6 +19,8 @@ from .assets.expressions import (
     material_package,
     modified,
     said_nouns,
+    shape_nouns,
+    shape_word,
 )
 from .splits import UNSEEN_SPLITS
 
@@ -106,7 +108,7 @@ def attribute_word(instance: Instance, attribute: str, direction: str = "") -> s
     if attribute == "material":
         return material_package(instance) or MATERIAL_ADJECTIVE.get(instance.material)
     if attribute == "shape":
-        return SHAPE_ADJECTIVE.get(instance.shape)
+        return shape_word(instance)
     return {"larger": "biggest", "smaller": "smallest"}[direction]
 
 
@@ -123,21 +125,19 @@ def attribute_phrase(instance: Instance, attribute: str, noun: str, direction: s
     if package:  # "the carton of juice", never "the paper juice"
         return f"{package} of {contents(noun)}"
     word = attribute_word(instance, attribute, direction)
+    if word in SHAPE_NOUNS:  # "sticky tape dispenser"
+        return f"{noun} {word}"
     phrase = modified(word, noun) if word else None
     if phrase is None:
         raise ValueError(f"{instance.category}: no {attribute} word {word!r} for {noun!r}")
     return phrase
 
 
-#: Attributes said of a thing that counts ("the smallest tape roll", never "the smallest
-#: sticky tape"): their phrases take a count noun.
-COUNTED = ("size", "shape")
-
-
 def attribute_phrases(instance: Instance, attribute: str, direction: str = "") -> list[str]:
-    """Every ``attribute_phrase`` of ``instance`` over the nouns people say for it (count
-    nouns for size and shape), leaving out those that repeat a word."""
-    nouns = count_nouns(instance) if attribute in COUNTED else said_nouns(instance)
+    """Every ``attribute_phrase`` of ``instance`` over the nouns people say for it, leaving
+    out those that repeat a word. Size and shape are said of a thing that counts ("the
+    smallest tape roll", never "the smallest sticky tape"; ``shape_nouns``)."""
+    nouns = {"size": count_nouns, "shape": shape_nouns}.get(attribute, said_nouns)(instance)
     out = []
     for each in nouns:
         try:

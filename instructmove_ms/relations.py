@@ -37,14 +37,16 @@ OPPOSITE = {
     "near": "far from",
     "far from": "near",
 }
-#: How instructions say each relation: every phrase reads as where the object is.
+#: How instructions say each relation: every phrase reads as where the object is, never
+#: as where to move it ("lift the chips farther from the bin" also reads as "move them
+#: farther away": distance is said only in the superlative).
 PHRASES = {
     "left of": ("to the left of", "on the left side of"),
     "right of": ("to the right of", "on the right side of"),
     "in front of": ("in front of",),
     "behind": ("behind",),
     "near": ("near", "next to", "closest to"),
-    "far from": ("farther from", "farthest from"),
+    "far from": ("farthest from", "furthest from"),
 }
 
 

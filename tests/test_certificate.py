@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import re
 
 import gymnasium as gym
 import pytest
@@ -16,7 +17,15 @@ from instructmove_ms import heldout
 from instructmove_ms.assets import load_snapshot
 from instructmove_ms.assets.expressions import SHAPE_ADJECTIVE, all_phrases
 from instructmove_ms.language import preposition
-from instructmove_ms.relations import CONE, MARGIN, REACH, bearing, holds, unique_holder
+from instructmove_ms.relations import (
+    CONE,
+    MARGIN,
+    PHRASES,
+    REACH,
+    bearing,
+    holds,
+    unique_holder,
+)
 from instructmove_ms.tasks.visibility import hidden_objects, measure
 from instructmove_ms.verify import VerificationError
 
@@ -47,6 +56,13 @@ def test_a_distractor_beside_the_reference_fails_clearly():
     target, beside = _at("behind", 10, 0.15), _at("behind", 80, 0.15)
     assert unique_holder("behind", [target, beside], REF) is None, "the other is not in front"
     assert unique_holder("behind", [target, _at("in front of", 5, 0.12)], REF) == 0
+
+
+def test_no_relation_is_said_as_a_comparative():
+    """ "lift the chips farther from the bin" also reads as "move them farther away"."""
+    said = [p for phrases in PHRASES.values() for p in phrases]
+    assert "farthest from" in said
+    assert not [p for p in said if re.search(r"\b\w+er (from|to|than)\b", p)]
 
 
 def test_colour_words_and_modifiers_as_people_say_them():

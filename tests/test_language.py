@@ -12,13 +12,13 @@ from instructmove_ms import heldout
 from instructmove_ms.assets import load_snapshot
 from instructmove_ms.assets.appearance import shown_color
 from instructmove_ms.assets.expressions import (
-    SHAPE_ADJECTIVE,
     all_phrases,
     color_word,
     colored,
     count_nouns,
     modified,
     said_nouns,
+    shape_word,
 )
 from instructmove_ms.assets.vocab import COLORS
 from instructmove_ms.language import (
@@ -137,8 +137,33 @@ def test_size_and_shape_are_said_of_a_count_noun():
     assert set(count_nouns(tape)) == {"tape roll", "roll of scotch tape", "roll of sticky tape"}
     assert "smallest tape roll" in attribute_phrases(tape, "size", "smaller")
     bread = _instances("bread")[0]
-    assert attribute_phrases(bread, "shape") == [f"{SHAPE_ADJECTIVE[bread.shape]} loaf of bread"]
+    assert attribute_phrases(bread, "shape") == [f"{shape_word(bread)} loaf of bread"]
     assert len(attribute_phrases(tape, "material")) > 1
+
+
+def test_shape_words_tell_every_two_shapes_of_a_category_apart():
+    shapes: dict[str, dict[str, str | None]] = {}
+    for inst in load_snapshot().instances:
+        shapes.setdefault(inst.category, {})[inst.shape] = shape_word(inst)
+    varied = {c: s for c, s in shapes.items() if len(s) > 1}
+    assert len(varied) >= 10, "the library varies shape within categories"
+    for category, words in varied.items():
+        said = [w for w in words.values() if w]
+        assert len(said) == len(set(said)), f"{category}: {words}"
+
+
+def test_a_tape_dispenser_is_named_and_a_plain_roll_is_not_by_its_shape():
+    loose, mounted = (
+        next(t for t in _instances("scotch_tape") if t.shape == s) for s in ("ring", "elongated")
+    )
+    assert shape_word(loose) is None
+    with pytest.raises(ValueError, match="no shape"):
+        attribute_phrases(loose, "shape")
+    assert set(attribute_phrases(mounted, "shape")) == {
+        "scotch tape dispenser",
+        "sticky tape dispenser",
+    }, "the dispenser is what is picked up, said of the tape it holds"
+    assert not [p for t in (loose, mounted) for p in all_phrases(t) if "dispenser" in p]
 
 
 def test_words_after_the_object_follow_a_short_phrase_only():
