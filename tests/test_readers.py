@@ -14,7 +14,7 @@ from instructmove_ms.assets import load_snapshot
 from instructmove_ms.assets.catalog import Catalog
 from instructmove_ms.heldout import SET_VERSION
 from instructmove_ms.readers import material
-from instructmove_ms.readers.briefs import BRIEFS
+from instructmove_ms.readers.briefs import BRIEFS, brief
 from instructmove_ms.readers.names import accepted_names, first_guess, names_category, normalise
 from instructmove_ms.readers.pictures import GRID, cell_key
 from instructmove_ms.readers.score import found, judgement, score
@@ -176,6 +176,29 @@ def test_in_scene_boxes_each_category_in_a_stored_episode(tmp_path):
     page = cv2.imread(str(tmp_path / "reader" / "in_scene_1.png"))[..., ::-1]
     magenta = (page[..., 0] == 255) & (page[..., 1] == 0) & (page[..., 2] == 255)
     assert magenta[:, :224].sum() > 20 and magenta[:, 224:448].sum() > 20  # one box per tile
+    assert "224 x 224 pixels" in (tmp_path / "reader" / "BRIEF.txt").read_text()
+
+
+def test_in_scene_can_show_the_same_views_at_a_larger_resolution(tmp_path):
+    import cv2
+
+    small, large = (
+        json.loads(
+            material.in_scene(
+                load_snapshot(), 3, tmp_path / str(side), only=["mug"], side=side
+            ).read_text()
+        )
+        for side in (224, 448)
+    )
+    assert small["side"] == 224 and large["side"] == 448
+    assert [i["source"] for i in small["items"]] == [i["source"] for i in large["items"]]
+    pages = [cv2.imread(str(tmp_path / str(s) / "reader" / "in_scene_1.png")) for s in (224, 448)]
+    boxes = [int(((p[..., 1] == 0) & (p[..., 0] == 255) & (p[..., 2] == 255)).sum()) for p in pages]
+    assert boxes[1] > 1.5 * boxes[0], "the same object, boxed, at twice the side"
+    assert (tmp_path / "448" / "reader" / "BRIEF.txt").read_text() == brief("in_scene", 448)
+    assert "448 x 448 pixels" in brief("in_scene", 448)
+    with pytest.raises(ValueError, match="side 4000 is not between 64 and 720"):
+        material.in_scene(load_snapshot(), 3, tmp_path / "x", only=["mug"], side=4000)
 
 
 def test_instructions_and_episodes_are_drawn_from_the_seed(tmp_path):

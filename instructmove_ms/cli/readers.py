@@ -27,7 +27,13 @@ def _cmd_draw(args: argparse.Namespace) -> int:
         from instructmove_ms.assets.snapshot import load_snapshot
 
         key = material.in_scene(
-            load_snapshot(args.snapshot), args.seed, out, args.set_version, args.only, args.cameras
+            load_snapshot(args.snapshot),
+            args.seed,
+            out,
+            args.set_version,
+            args.only,
+            args.cameras,
+            args.resolution,
         )
     elif kind == "instructions":
         import instructmove_ms  # noqa: F401  (registration)
@@ -42,9 +48,9 @@ def _cmd_draw(args: argparse.Namespace) -> int:
 
 
 def _cmd_brief(args: argparse.Namespace) -> int:
-    from instructmove_ms.readers.briefs import BRIEFS
+    from instructmove_ms.readers.briefs import brief
 
-    print(BRIEFS[args.kind.replace("-", "_")], end="")
+    print(brief(args.kind.replace("-", "_")), end="")
     return 0
 
 
@@ -74,7 +80,7 @@ KINDS = ("close-ups", "in-scene", "instructions", "episodes")
 
 def add_parsers(sub: argparse._SubParsersAction) -> None:
     from instructmove_ms.assets.snapshot import DEFAULT_SNAPSHOT
-    from instructmove_ms.readers import CAMERAS, SOURCES
+    from instructmove_ms.readers import CAMERAS, POLICY_RESOLUTION, SOURCES
 
     group = _add_group(sub, "readers", "material for fresh readers and the scorer of answers")
     helps = {
@@ -99,6 +105,15 @@ def add_parsers(sub: argparse._SubParsersAction) -> None:
                 default="scene",
                 help="show each object in the scene camera that shows most of it, or in any "
                 "camera the policy reads, wrist cameras too (default: %(default)s)",
+            )
+            p.add_argument(
+                "--resolution",
+                type=int,
+                default=POLICY_RESOLUTION,
+                metavar="PIXELS",
+                help="side of the square pictures: the policy's by default; a larger one "
+                "tells what the objects show from what the policy's pixels keep of them "
+                "(default: %(default)s)",
             )
         if kind == "close-ups":
             p.add_argument(

@@ -4,6 +4,8 @@ sheets or earlier answers."""
 
 from __future__ import annotations
 
+from . import POLICY_RESOLUTION
+
 _ANSWER = (
     "Write one line per number, in the form `N: answer`, in a plain text file. Answer "
     "every number; if you are unsure, still give your best guess."
@@ -18,11 +20,11 @@ after a semicolon (`7: teapot; kettle`), but only the first one counts.
 {_ANSWER}
 """,
     "in_scene": f"""\
-Each numbered picture (in_scene_*.png) is what a robot's camera sees of a table, at the
-camera's own resolution (224 x 224 pixels). One object in each picture has a thin magenta
-box around it. For each number, say what that object is, in the words you would use to
-name it to a friend (for example `7: teapot`). Give your first guess first; you may add
-other guesses after a semicolon, but only the first one counts.
+Each numbered picture (in_scene_*.png) is what a robot's camera sees of a table, at
+{{side}} x {{side}} pixels. One object in each picture has a thin magenta box around it.
+For each number, say what that object is, in the words you would use to name it to a
+friend (for example `7: teapot`). Give your first guess first; you may add other guesses
+after a semicolon, but only the first one counts.
 {_ANSWER}
 """,
     "instructions": f"""\
@@ -45,3 +47,8 @@ also says where to put the object, add the place after a slash: `N: 2 C4 / 1 F6`
 {_ANSWER}
 """,
 }
+
+
+def brief(kind: str, side: int = POLICY_RESOLUTION) -> str:
+    """What a reader of ``kind`` is told; in-scene pictures are ``side`` pixels square."""
+    return BRIEFS[kind].replace("{side}", str(side))

@@ -20,16 +20,17 @@ from ..episode import EpisodeSpec
 from ..files import write_json, write_text
 from ..heldout import SET_VERSION, load_set
 from ..splits import EVAL_SEED_BASE, EVAL_SPLITS
-from . import CAMERAS, SOURCES, briefs
+from . import CAMERAS, POLICY_RESOLUTION, SOURCES
+from .briefs import brief
 from .pictures import boxed, cell_key, numbered, ruled, write_pages, write_png
 
-#: Scene cameras, then the others, at the resolution policies are trained on.
-POLICY_RESOLUTION = 224
+#: The smallest and largest square side in-scene material is drawn at (pixels).
+MIN_SIDE, MAX_SIDE = 64, 720
 
 
-def _reader(out: Path, kind: str) -> Path:
+def _reader(out: Path, kind: str, side: int = POLICY_RESOLUTION) -> Path:
     folder = Path(out) / "reader"
-    write_text(folder / "BRIEF.txt", briefs.BRIEFS[kind])
+    write_text(folder / "BRIEF.txt", brief(kind, side))
     return folder
 
 
@@ -111,10 +112,11 @@ class Views:
 
 
 class SceneRenderer:
-    """Stored episodes reset in rgb envs at the policy's resolution, one env per (env id,
-    robot), with the segmentation of every camera."""
+    """Stored episodes reset in rgb envs at ``side`` x ``side`` (the policy's resolution by
+    default), one env per (env id, robot), with the segmentation of every camera."""
 
-    def __init__(self) -> None:
+    def __init__(self, side: int = POLICY_RESOLUTION) -> None:
+        self.side = side
         self._envs: dict[tuple, object] = {}
 
     def env(self, env_id: str, robot: str):
@@ -122,7 +124,7 @@ class SceneRenderer:
 
         key = (env_id, robot)
         if key not in self._envs:
-            self._envs[key] = sheet_env(env_id, robot, POLICY_RESOLUTION, POLICY_RESOLUTION)
+            self._envs[key] = sheet_env(env_id, robot, self.side, self.side)
         return self._envs[key]
 
     def views(self, env_id: str, spec: EpisodeSpec) -> Views:
@@ -189,17 +191,22 @@ def in_scene(
     version: int | None = None,
     only: list[str] | None = None,
     cameras: str = "scene",
+    side: int = POLICY_RESOLUTION,
 ) -> Path:
     """Every category of ``catalog`` (or of ``only``) that a stored set holds, in a random
     stored episode holding it, boxed in the camera that shows most of it (``best_camera``)
-    at the policy's resolution, in a random order: pages ``in_scene_N.png``. The key names
-    the categories no stored episode holds (``absent``)."""
+    at ``side`` x ``side`` (the policy's resolution; a larger one tells what an object shows
+    from what the policy's pixels keep of it), in a random order: pages ``in_scene_N.png``,
+    as many per page as at the policy's resolution fit one. The key names the categories no
+    stored episode holds (``absent``)."""
+    if not MIN_SIDE <= side <= MAX_SIDE:
+        raise ValueError(f"side {side} is not between {MIN_SIDE} and {MAX_SIDE} pixels")
     rng = np.random.default_rng(seed)
     found = _occurrences(version)
     wanted = _categories(catalog, only)
     shown = [c for c in wanted if c in found]
     categories = [shown[k] for k in rng.permutation(len(shown))]
-    renderer = SceneRenderer()
+    renderer = SceneRenderer(side)
     tiles, items = [], []
     try:
         for n, category in enumerate(tqdm(categories, desc="in-scene", unit="object"), 1):
@@ -221,7 +228,10 @@ def in_scene(
             )
     finally:
         renderer.close()
-    write_pages(tiles, _reader(out, "in_scene"), "in_scene")
+    scale = max(1, side // POLICY_RESOLUTION)
+    write_pages(
+        tiles, _reader(out, "in_scene", side), "in_scene", max(1, 6 // scale), max(1, 5 // scale)
+    )
     absent = sorted(set(wanted) - set(found))
     return _write_key(
         out,
@@ -231,6 +241,7 @@ def in_scene(
         set_version=version or SET_VERSION,
         absent=absent,
         cameras=cameras,
+        side=side,
     )
 
 
