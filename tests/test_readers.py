@@ -197,7 +197,7 @@ def test_in_scene_can_show_the_same_views_at_a_larger_resolution(tmp_path):
     assert boxes[1] > 1.5 * boxes[0], "the same object, boxed, at twice the side"
     assert (tmp_path / "448" / "reader" / "BRIEF.txt").read_text() == brief("in_scene", 448)
     assert "448 x 448 pixels" in brief("in_scene", 448)
-    with pytest.raises(ValueError, match="side 4000 is not between 64 and 720"):
+    with pytest.raises(ValueError, match="resolution 4000 is not between 64 and 720"):
         material.in_scene(load_snapshot(), 3, tmp_path / "x", only=["mug"], side=4000)
 
 

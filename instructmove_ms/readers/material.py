@@ -196,11 +196,11 @@ def in_scene(
     """Every category of ``catalog`` (or of ``only``) that a stored set holds, in a random
     stored episode holding it, boxed in the camera that shows most of it (``best_camera``)
     at ``side`` x ``side`` (the policy's resolution; a larger one tells what an object shows
-    from what the policy's pixels keep of it), in a random order: pages ``in_scene_N.png``,
-    as many per page as at the policy's resolution fit one. The key names the categories no
+    from what the policy's pixels keep of it), in a random order: pages ``in_scene_N.png``
+    no larger than the policy's resolution makes them. The key names the categories no
     stored episode holds (``absent``)."""
     if not MIN_SIDE <= side <= MAX_SIDE:
-        raise ValueError(f"side {side} is not between {MIN_SIDE} and {MAX_SIDE} pixels")
+        raise ValueError(f"resolution {side} is not between {MIN_SIDE} and {MAX_SIDE} pixels")
     rng = np.random.default_rng(seed)
     found = _occurrences(version)
     wanted = _categories(catalog, only)
