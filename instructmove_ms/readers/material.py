@@ -22,7 +22,16 @@ from ..heldout import SET_VERSION, load_set
 from ..splits import EVAL_SEED_BASE, EVAL_SPLITS
 from . import CAMERAS, POLICY_RESOLUTION, SOURCES
 from .briefs import brief
-from .pictures import boxed, cell_key, numbered, ruled, write_pages, write_png
+from .pictures import (
+    PAGE_COLUMNS,
+    PAGE_ROWS,
+    boxed,
+    cell_key,
+    numbered,
+    ruled,
+    write_pages,
+    write_png,
+)
 
 #: The smallest and largest square side in-scene material is drawn at (pixels).
 MIN_SIDE, MAX_SIDE = 64, 720
@@ -230,7 +239,11 @@ def in_scene(
         renderer.close()
     scale = max(1, side // POLICY_RESOLUTION)
     write_pages(
-        tiles, _reader(out, "in_scene", side), "in_scene", max(1, 6 // scale), max(1, 5 // scale)
+        tiles,
+        _reader(out, "in_scene", side),
+        "in_scene",
+        max(1, PAGE_COLUMNS // scale),
+        max(1, PAGE_ROWS // scale),
     )
     absent = sorted(set(wanted) - set(found))
     return _write_key(

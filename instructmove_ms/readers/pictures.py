@@ -15,6 +15,8 @@ FONT = cv2.FONT_HERSHEY_SIMPLEX
 GRID = 8
 COLUMNS = "ABCDEFGH"
 BOX_COLOR = (255, 0, 255)  # magenta, RGB
+#: Tiles a page holds across and down (of the policy's resolution or smaller).
+PAGE_COLUMNS, PAGE_ROWS = 6, 5
 MARGIN = 18
 
 
@@ -95,7 +97,11 @@ def cell_key(
 
 
 def write_pages(
-    tiles: list[np.ndarray], folder: Path, stem: str, columns: int = 6, rows: int = 5
+    tiles: list[np.ndarray],
+    folder: Path,
+    stem: str,
+    columns: int = PAGE_COLUMNS,
+    rows: int = PAGE_ROWS,
 ) -> list[Path]:
     """``tiles`` (RGB, equal size) as PNG pages of ``columns`` x ``rows``: ``stem``_1.png, ..."""
     per_page = columns * rows
