@@ -28,7 +28,7 @@ from pathlib import Path
 import numpy as np
 
 from ..files import write_text
-from .catalog import Instance
+from .catalog import DEFAULT_SNAPSHOT, Instance
 from .identity import content_hash
 from .vocab import MATERIALS
 
@@ -76,7 +76,7 @@ def dominant(lab: np.ndarray) -> np.ndarray:
     return lab[inverse.ravel() == int(np.argmax(counts))].mean(axis=0)
 
 
-def table_path(snapshot: str = "default") -> Path:
+def table_path(snapshot: str = DEFAULT_SNAPSHOT) -> Path:
     """The file of a snapshot's rendered colours and swatches, beside the snapshot."""
     folder = resources.files("instructmove_ms.assets").joinpath("snapshots", "appearance")
     return Path(str(folder)) / f"{snapshot}.json"
@@ -114,7 +114,7 @@ def rehash_table(path: Path, old: dict[str, str], instances: list[Instance]) -> 
 
 
 @cache
-def _table(snapshot: str = "default") -> dict:
+def _table(snapshot: str = DEFAULT_SNAPSHOT) -> dict:
     path = table_path(snapshot)
     return json.loads(path.read_text()) if path.is_file() else {"instances": {}, "swatches": {}}
 

@@ -19,6 +19,9 @@ from .parts import Part, Region, union_bounds
 from .textures import Texture
 from .vocab import material_word
 
+#: The snapshot envs and tools load unless told otherwise (``snapshot``).
+DEFAULT_SNAPSHOT = "recognisable"
+
 #: Namespace of instance uuids: uuid5(NAMESPACE, "<category>/<index>") never changes.
 UUID_NAMESPACE = uuidlib.UUID("6f1c1c9e-3d52-4c55-9c55-6a1e0b1c7a01")
 #: About one instance in five is held out for the unseen_instance split, one category in

@@ -8,14 +8,11 @@ silently run on changed assets. Growing the library (new categories, more instan
 a new snapshot; old ones keep their meaning.
 
 A snapshot also records how its instances are built (``Frozen``): whether they wear their
-textures (printed labels, dials, grain: ``textures``; one written without, as every snapshot
-from before textures, rebuilds its instances plain), and the library revision it was frozen
-at (``library``; absent means 1): each category is rebuilt by its newest generator at or
-before that revision (``generators.registry``), so a revised generator never changes an
-older snapshot. Three ship with the package: ``detailed``, the library as it looks now
-(revision 2), ``printed``, revision 1 with its prints, and ``default``, revision 1 plain, on
-which the held-out sets of versions 2 and 3 were published (version 4 plays on ``printed``,
-5 on ``detailed``).
+textures (printed labels, dials, grain: ``textures``; one written without rebuilds its
+instances plain), and the library revision it was frozen at (``library``; absent means 1):
+each category is rebuilt by its newest generator at or before that revision
+(``generators.registry``), so a revised generator never changes an older snapshot. One
+ships with the package: ``recognisable`` (revision 3), on which InstructMove 1.0 plays.
 """
 
 from __future__ import annotations
@@ -28,12 +25,11 @@ from pathlib import Path
 
 from ..files import write_json, write_text
 from ..worker_log import mark
-from .catalog import Catalog, Instance, generate_instance, plain
+from .catalog import DEFAULT_SNAPSHOT, Catalog, Instance, generate_instance, plain
 from .generators import GENERATORS, LIBRARY
 from .identity import IDENTITY_SCHEME, content_hash, hash_for
 from .importer import data_home
 
-DEFAULT_SNAPSHOT = "recognisable"
 SNAPSHOT_DIR = "snapshots"
 
 
@@ -47,12 +43,7 @@ class Frozen:
 
 
 #: The snapshots that ship with the package, and how each builds its instances.
-SHIPPED = {
-    "default": Frozen(textures=False, library=1),
-    "printed": Frozen(textures=True, library=1),
-    "detailed": Frozen(textures=True, library=2),
-    "recognisable": Frozen(textures=True, library=3),
-}
+SHIPPED = {"recognisable": Frozen(textures=True, library=3)}
 
 
 def build_entries(
@@ -174,8 +165,9 @@ def _checked(name: str, data: dict) -> list[Instance]:
             )
             raise ValueError(
                 f"snapshot {name!r} is stale: {entry['category']} #{entry['index']} "
-                f"({entry['uuid']}) changed since it was frozen; rebuild it with "
-                f"`instructmove assets build` or freeze a new snapshot{hint}"
+                f"({entry['uuid']}) changed since it was frozen; a changed generator is a "
+                "new library revision, frozen as a new snapshot (`instructmove assets build "
+                f"--name NEW`){hint}"
             )
         instances.append(inst)
     return instances

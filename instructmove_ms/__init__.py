@@ -6,7 +6,7 @@ Importing the package registers every env (``PickCategory-InstructMove``, ...) a
 
 from pathlib import Path
 
-__version__ = "0.1.0"
+__version__ = "1.0.0"
 
 # In a source checkout, agents/, tasks/ and assets/ sit next to this folder; setuptools maps
 # them into the package on install. Make a plain checkout on sys.path behave the same way.

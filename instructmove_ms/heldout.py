@@ -2,14 +2,12 @@
 
 Evaluation seeds come from ``splits.eval_seed`` (training data and demos use seeds below
 ``splits.EVAL_SEED_BASE``, so the two never share an episode). The sets ship with the
-package under ``tasks/episodes/v<version>/<env id>/<robot>/<split>.jsonl``: version 7 (the
-default) plays on the ``recognisable`` snapshot (library revision 3: the categories fresh
-readers misnamed, rebuilt; packaged goods print their kind) and is said as people say it
-(``assets.expressions``). The older versions stay loadable so that results published on them
-can be reproduced: 6 (the same grammar) and 5 on the ``detailed`` snapshot (revision 2), 4 on
-the ``printed`` one (labels, dials, grain: ``assets.textures``, revision 1), 3 on the plain
-``default`` one, and 2, the same seeds in the former phrasing. Each episode names its
-snapshot, and an env builds it from that one.
+package under ``tasks/episodes/v<version>/<env id>/<robot>/<split>.jsonl``. Each released
+benchmark version is one set version (``BENCHMARKS``): InstructMove 1.0 is set version 7,
+played on the ``recognisable`` snapshot and said as people say it (``assets.expressions``).
+Each episode names its snapshot, and an env builds it from that one. A later benchmark
+version adds its sets beside these, which stay loadable (``--set-version``); the
+pre-release versions 2-6 are kept by the git tag ``v0.1.0``.
 
 A set also exports as a config of ManiSkill's evaluator convention: ``env_info`` (``env_id``,
 ``max_episode_steps``, ``env_kwargs``) and ``episodes`` of ``{episode_id, reset_kwargs}``,
@@ -40,9 +38,11 @@ from .validation import check_choice
 from .verify import verify
 
 EPISODES_PER_SET = 100
+#: Each released benchmark version, by the stored set version that makes it.
+BENCHMARKS = {7: "1.0"}
 #: The stored set versions (``--set-version``) and the one evaluation uses by default.
-SET_VERSIONS = (2, 3, 4, 5, 6, 7)
-SET_VERSION = 7
+SET_VERSIONS = tuple(BENCHMARKS)
+SET_VERSION = max(SET_VERSIONS)
 #: Seeds tried per kept episode at most (seeds whose scenes hide a candidate are skipped).
 SEEDS_PER_EPISODE = 5
 #: Each version's file of its set files' SHA-256 (``instructmove doctor`` checks them).
@@ -53,7 +53,7 @@ def benchmark_name(version: int | None = None) -> str:
     """The benchmark version the stored sets of ``version`` (None: the current one) make."""
     version = SET_VERSION if version is None else version
     check_choice("set version", version, SET_VERSIONS)
-    return f"InstructMove held-out sets v{version} (pre-release, before InstructMove 1.0)"
+    return f"InstructMove {BENCHMARKS[version]} (held-out sets v{version})"
 
 
 def default_folder(version: int | None = None) -> Path:

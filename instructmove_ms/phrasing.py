@@ -1,8 +1,9 @@
 """Wording a native speaker would not use, found in an instruction.
 
 The checks behind the stored sets' phrasing (docs/envs.md, "Envs": how instructions are
-said): each names one pattern a reader flagged in the version 2 sets. ``faults`` lists those
-an instruction of a spec shows; the version 3 sets show none (``tests/test_phrasing.py``).
+said): each names one pattern a reader flagged in the first pre-release sets (v2). ``faults``
+lists those an instruction of a spec shows; the stored sets show none
+(``tests/test_phrasing.py``).
 """
 
 from __future__ import annotations

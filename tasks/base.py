@@ -194,8 +194,8 @@ class InstructMoveEnv(BaseEnv):
         return certify(spec, self.catalog_of(spec), self.task, self.agent.gripper.max_width)
 
     def catalog_of(self, spec: EpisodeSpec) -> Catalog:
-        """The snapshot ``spec`` was made on (a stored episode names its own: sets of
-        versions 2 and 3 play on the plain ``default`` one in any env)."""
+        """The snapshot ``spec`` was made on (a stored episode names its own, and plays on
+        it in an env made on any snapshot)."""
         return self.catalog if spec.snapshot == self.catalog.name else load_snapshot(spec.snapshot)
 
     def perturbed(self, spec: EpisodeSpec, levels) -> EpisodeSpec:

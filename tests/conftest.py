@@ -86,3 +86,80 @@ def verify_spec(spec, catalog) -> list[str]:
 
     opening = REGISTERED_AGENTS[spec.robot].agent_cls.gripper.max_width
     return verify(spec, catalog, FAMILIES[spec.family], opening)
+
+
+@pytest.fixture
+def future_set_version(monkeypatch, tmp_path):
+    """A benchmark version 2.0 (set version 8) beside the released 1.0 (set version 7): every
+    v7 set in reverse order, the new default."""
+    from instructmove_ms import heldout
+
+    released = heldout.default_folder
+    folder = tmp_path / "v8"
+    for path in released(7).glob("*/*/*.jsonl"):
+        lines = path.read_text().splitlines(keepends=True)
+        target = folder / path.relative_to(released(7))
+        target.parent.mkdir(parents=True, exist_ok=True)
+        target.write_text("".join(lines[::-1]))
+    monkeypatch.setattr(heldout, "BENCHMARKS", {**heldout.BENCHMARKS, 8: "2.0"})
+    monkeypatch.setattr(heldout, "SET_VERSIONS", (*heldout.SET_VERSIONS, 8))
+    monkeypatch.setattr(heldout, "SET_VERSION", 8)
+    monkeypatch.setattr(
+        heldout,
+        "default_folder",
+        lambda version=None: folder if version in (None, 8) else released(version),
+    )
+
+
+@pytest.fixture
+def user_snapshot(monkeypatch, tmp_path):
+    """Writes a snapshot of its own into a temporary user folder: ``make(name, categories,
+    per_category, frozen)`` returns its name; every one is gone after the test."""
+    from instructmove_ms.assets import snapshot as snap
+
+    monkeypatch.setattr(snap, "user_snapshot_dir", lambda: tmp_path / "snapshots")
+
+    def make(name: str, categories: list[str], per_category: int, frozen) -> str:
+        entries = snap.build_entries(sorted(set(categories)), per_category, frozen)
+        snap.write_snapshot(tmp_path / "snapshots" / f"{name}.json", name, entries, frozen)
+        return name
+
+    yield make
+    snap.load_snapshot.cache_clear()
+
+
+@pytest.fixture
+def own_registry(monkeypatch):
+    """A copy of the asset generators' registry to register into; the real one is left
+    untouched."""
+    from instructmove_ms.assets.generators import GENERATORS, REVISIONS, registry
+
+    monkeypatch.setattr(registry, "REVISIONS", {c: dict(b) for c, b in REVISIONS.items()})
+    monkeypatch.setattr(registry, "GENERATORS", dict(GENERATORS))
+    return registry
+
+
+def with_a_tag(before):
+    """A rebuild of ``before``: the same object with a tag on it (a part it lacked)."""
+
+    def build(d):
+        traits = before(d)
+        d.box("tag", (0.004, 0.004, 0.001), (0.0, 0.0, 0.001), "paper", "red", visual_only=True)
+        return traits
+
+    return build
+
+
+@pytest.fixture
+def revision_4(own_registry, monkeypatch, tmp_path):
+    """A library revision 4 that rebuilds the mouse (its build came in revision 2), and a
+    user snapshot folder of its own."""
+    from instructmove_ms.assets import snapshot as snap
+    from instructmove_ms.assets.generators import registry, revised
+
+    monkeypatch.setattr(registry, "LIBRARY", 4)
+    revised("mouse", 4)(with_a_tag(registry.GENERATORS["mouse"].build))
+    monkeypatch.setattr(snap, "user_snapshot_dir", lambda: tmp_path)
+    snap.load_snapshot.cache_clear()
+    yield registry
+    snap.load_snapshot.cache_clear()

@@ -73,7 +73,7 @@ def test_eval_writes_reports_and_rejects_unknown_policies(tmp_path, capsys):
 def test_assets_rehash_names_an_unknown_snapshot(capsys):
     assert main(["assets", "rehash", "nosuch"]) == 2
     err = capsys.readouterr().err
-    assert "unknown snapshot 'nosuch'" in err and "'default'" in err
+    assert "unknown snapshot 'nosuch'" in err and "'recognisable'" in err
 
 
 @pytest.mark.parametrize("size", ["128", "128x", "0x96", "axb"])
@@ -91,3 +91,17 @@ def test_export_lerobot_names_the_formats_it_writes(capsys):
         main([*argv, "--format", "v2.0"])
     err = capsys.readouterr().err
     assert "'v2.0'" in err and "'v3.0'" in err and "'v2.1'" in err
+
+
+def test_assets_build_never_changes_the_released_snapshot(capsys):
+    """The shipped snapshot is InstructMove 1.0's: a build that would write other instances
+    into it is refused, naming what would change, and the file stays as it was."""
+    from instructmove_ms.assets import snapshot as snap
+
+    path = snap.snapshot_path(snap.DEFAULT_SNAPSHOT)
+    before = path.read_bytes()
+    assert main(["assets", "build", "--per-category", "1"]) == 2
+    err = capsys.readouterr().err
+    assert "'recognisable' ships with a released benchmark" in err
+    assert "114 instances, not 1140" in err and "--name NEW" in err
+    assert path.read_bytes() == before

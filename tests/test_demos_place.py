@@ -27,8 +27,9 @@ from instructmove_ms.tasks import PLACE_STAGES
 TASK, ROBOT = "PlaceA2B-InstructMove", "franka"
 STEM = f"{TASK}_{ROBOT}"
 SEEDS = (1, 3)
-#: PiperX PlaceA2B scenes kept for the cases they show, by their index in the first
-#: release's stored ``seen`` set (tests/data/place_a2b_piperx_scenes.jsonl).
+#: PiperX PlaceA2B scenes kept for the cases they show, by their index in the pre-release
+#: sets' ``seen`` set, on the ``recognisable`` snapshot (the same categories, instance
+#: indices and poses; tests/data/place_a2b_piperx_scenes.jsonl).
 SCENES = dict(
     zip(
         (2, 7, 22, 84, 98),

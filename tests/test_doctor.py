@@ -75,7 +75,7 @@ def test_a_machine_without_a_rendering_device_is_broken_and_says_why():
 
 def test_simulated_faults_each_give_their_line(tmp_path, monkeypatch):
     def stale(*_, **__):
-        raise ValueError("snapshot 'detailed' is stale: mug #5 (x) changed since it was frozen")
+        raise ValueError("snapshot 'recognisable' is stale: mug #5 (x) changed since it was frozen")
 
     monkeypatch.setattr("instructmove_ms.assets.load_snapshot", stale)
     monkeypatch.setattr(doctor, "CORE_PACKAGES", (*doctor.CORE_PACKAGES, "no-such-dist"))
@@ -87,7 +87,7 @@ def test_simulated_faults_each_give_their_line(tmp_path, monkeypatch):
     findings = doctor.run_checks(only=("packages", "asset library", "stored sets"))
     lines = [f.line() for f in findings]
     assert lines[0].startswith("fail packages: missing: no-such-dist"), lines
-    assert lines[1].startswith("fail asset library: ValueError: snapshot 'detailed' is stale")
+    assert lines[1].startswith("fail asset library: ValueError: snapshot 'recognisable' is stale")
     assert lines[2].startswith("fail stored sets: differ from their checksums: v")
     assert first.relative_to(copy).as_posix() in lines[2]
     assert [f.name for f in doctor.broken(findings)] == ["packages", "asset library", "stored sets"]

@@ -81,7 +81,7 @@ def test_spec_json_round_trip_and_exact_rebuild(state_env):
         (dict(robot_uids="ur5"), ["'ur5'", "'franka'"]),
         (dict(split="validation"), ["'validation'", "'unseen_category'"]),
         (dict(num_distractors=-1), ["num_distractors", "-1", "[1, 5]"]),
-        (dict(snapshot="nope"), ["'nope'", "'default'"]),
+        (dict(snapshot="nope"), ["'nope'", "'recognisable'"]),
     ],
 )
 def test_bad_arguments_name_value_and_allowed(kwargs, names):

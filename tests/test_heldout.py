@@ -106,27 +106,35 @@ def test_a_contact_sheet_shows_each_episode_from_the_scene_camera(tmp_path):
     assert (caption < 128).any() and (caption == 255).mean() > 0.6, "dark text on white"
 
 
-def test_the_former_set_version_stays_loadable(tmp_path, capsys):
-    """Version 2, kept for results published on it, loads through the API and the CLI and
-    still passes the verifier; it holds the former wording of the same seeds."""
+def test_the_package_holds_one_benchmark_version():
+    """InstructMove 1.0 is set version 7; no other stored set ships."""
+    stored = sorted(p.name for p in heldout.default_folder().parent.iterdir() if p.is_dir())
+    assert stored == [f"v{heldout.SET_VERSION}"] and heldout.SET_VERSIONS == (7,)
+    assert heldout.benchmark_name() == "InstructMove 1.0 (held-out sets v7)"
+
+
+def test_a_released_version_stays_loadable_beside_a_newer_one(future_set_version, tmp_path, capsys):
+    """Once a newer benchmark version ships, 1.0's sets still load by ``--set-version 7``,
+    through the API and the CLI, and the default is the newer one."""
     env_id, robot = "PlaceA2B-InstructMove", "franka"
-    old = heldout.load_set(env_id, robot, "seen", version=2)
-    catalog = load_snapshot(old[0].snapshot)  # the plain snapshot it was published on
-    new = heldout.load_set(env_id, robot, "seen")
-    assert len(old) == len(new) == heldout.EPISODES_PER_SET
-    assert sum(o.instruction != n.instruction for o, n in zip(old, new, strict=True)) > 50
-    assert all(verify_spec(spec, catalog) == [] for spec in old[:10])
-    config = heldout.evaluator_config(env_id, robot, "seen", episodes=3, version=2)
-    assert [e.spec for e in config.episodes] == old[:3]
-    path = tmp_path / "v2.json"
-    args = ["eval", "--task", env_id, "--robot", robot, "--episodes", "2", "--set-version", "2"]
+    released = heldout.load_set(env_id, robot, "seen", version=7)
+    newer = heldout.load_set(env_id, robot, "seen")
+    assert newer == released[::-1] != released
+    assert heldout.benchmark_name(7) == "InstructMove 1.0 (held-out sets v7)"
+    assert heldout.benchmark_name() == "InstructMove 2.0 (held-out sets v8)"
+    config = heldout.evaluator_config(env_id, robot, "seen", episodes=3, version=7)
+    assert [e.spec for e in config.episodes] == released[:3]
+    path = tmp_path / "v7.json"
+    args = ["eval", "--task", env_id, "--robot", robot, "--episodes", "2", "--set-version", "7"]
     assert main([*args, "--write-config", str(path)]) == 0
     assert "2 episodes ->" in capsys.readouterr().out
     written = heldout.EvaluatorConfig.load(path)
-    assert [e.spec.instruction for e in written.episodes] == [s.instruction for s in old[:2]]
+    assert [e.spec for e in written.episodes] == released[:2]
     show = ["episodes", "show", "--task", env_id, "--robot", robot, "--index", "4"]
-    assert main([*show, "--set-version", "2"]) == 0
-    assert json.loads(capsys.readouterr().out)["instruction"] == old[4].instruction
+    assert main([*show, "--set-version", "7"]) == 0
+    assert json.loads(capsys.readouterr().out)["instruction"] == released[4].instruction
+    assert main(show) == 0
+    assert json.loads(capsys.readouterr().out)["instruction"] == newer[4].instruction
     with pytest.raises(SystemExit) as exc:
         main([*show, "--set-version", "9"])
     assert exc.value.code == 2 and "invalid choice: 9" in capsys.readouterr().err
@@ -144,86 +152,62 @@ def _textures_built(env) -> int:
     )
 
 
-def test_version_3_plays_on_the_plain_snapshot_it_was_published_on():
-    """Version 4 holds version 3's scenes on the printed snapshot (four scenes moved: a
-    print changed what the camera shows of an object); a version-3 episode names the
-    plain snapshot, and an env made on the printed one builds it plain."""
-    printed = load_snapshot("printed")
+def test_an_episode_plays_on_the_snapshot_it_names(user_snapshot):
+    """An episode that names another snapshot (here a plain copy of the library, as a
+    later benchmark version's sets may name one) is built from that snapshot in any env:
+    plain where it names the plain one, printed where it names ``recognisable``."""
+    from instructmove_ms.assets.snapshot import Frozen
+
+    catalog = load_snapshot()
     env_id, robot = "PickCategory-InstructMove", "franka"
-    old, new = (heldout.load_set(env_id, robot, "seen", version=v) for v in (3, 4))
-    assert {s.snapshot for s in old} == {"default"} and {s.snapshot for s in new} == {"printed"}
-    assert [heldout.scene_key(s) for s in old] == [heldout.scene_key(s) for s in new]
-    k = next(  # an episode with a printed object
-        k
-        for k, s in enumerate(new)
-        if any(p.texture for o in s.objects for p in printed[o.uuid].parts)
+    spec = next(  # an episode with a printed object
+        s
+        for s in heldout.load_set(env_id, robot, "seen")
+        if any(p.texture for o in s.objects for p in catalog[o.uuid].parts)
     )
+    plain = user_snapshot("plain_copy", [o.category for o in spec.objects], 10, Frozen(False))
     env = gym.make(env_id, robot_uids=robot, obs_mode="state")
     try:
-        for spec, wanted in ((new[k], True), (old[k], False)):
-            env.reset(options={"episode": spec.to_dict()})
-            assert env.unwrapped.catalog_of(spec).name == spec.snapshot
-            assert (_textures_built(env) > 0) == wanted
+        for played, printed in ((spec, True), (dataclasses.replace(spec, snapshot=plain), False)):
+            env.reset(options={"episode": played.to_dict()})
+            assert env.unwrapped.catalog_of(played).name == played.snapshot
+            assert {o.uuid for o in env.unwrapped.episode.objects} == {o.uuid for o in spec.objects}
+            assert (_textures_built(env) > 0) == printed
     finally:
         env.close()
 
 
-#: (older version, newer version, their snapshots, the library revision between them, the
-#: least share of the newer version's scenes the older one holds).
-REVISED_SETS = [(4, 5, "printed", "detailed", 2, 0.5), (6, 7, "detailed", "recognisable", 3, 0.0)]
-
-
-@pytest.mark.parametrize(
-    ("old_v", "new_v", "old_snap", "new_snap", "revision", "share"), REVISED_SETS
-)
-def test_a_set_on_a_revised_library_plays_its_assets_and_the_older_keeps_its_own(
-    old_v, new_v, old_snap, new_snap, revision, share
-):
-    """Version 5 is version 4 on the ``detailed`` snapshot (library revision 2), version 7
-    version 6 on ``recognisable`` (revision 3): none of the newer scenes holds a build the
-    revision replaced, the revised assets are there; an older episode still builds its own
-    assets."""
-    from instructmove_ms.assets.generators import REVISIONS
-
-    revised = {c for c, builds in REVISIONS.items() if revision in builds}
-    older, newer = load_snapshot(old_snap), load_snapshot(new_snap)
-    env_id, robot = "PickCategory-InstructMove", "franka"
-    old, new = (heldout.load_set(env_id, robot, "seen", version=v) for v in (old_v, new_v))
-    assert {s.snapshot for s in old} == {old_snap} and {s.snapshot for s in new} == {new_snap}
-    shared = {heldout.scene_key(s) for s in old} & {heldout.scene_key(s) for s in new}
-    assert len(shared) >= share * len(new)
-    assert all(o.uuid in newer for s in new for o in s.objects)
-    news = [o.uuid for s in new for o in s.objects if newer[o.uuid].category in revised]
-    assert news and not any(u in older for u in news)
-    spec = next(s for s in old if any(older[o.uuid].category in revised for o in s.objects))
-    env = gym.make(env_id, robot_uids=robot, obs_mode="state")
-    try:
-        env.reset(options={"episode": spec.to_dict()})
-        assert env.unwrapped.catalog_of(spec).name == old_snap
-        built = {o.uuid for o in env.unwrapped.episode.objects}
-        assert built == {o.uuid for o in spec.objects} and not built & set(news)
-        assert any(older[u].category in revised for u in built)
-    finally:
-        env.close()
-
-
-def test_an_older_episode_with_a_replaced_asset_is_played_and_scored(tmp_path):
-    """The planner oracle picks up a version-4 object whose category revision 2 rebuilt, in
-    an env made on the newest snapshot: planning and scoring read the episode's own
-    snapshot (they once read the env's, where that uuid does not exist)."""
-    from instructmove_ms.assets.generators import REVISIONS
+def test_an_episode_on_another_snapshot_is_played_and_scored(user_snapshot, tmp_path):
+    """The planner oracle picks up a target that only the episode's own snapshot holds (an
+    instance past the shipped ones), in an env made on ``recognisable``: planning and
+    scoring read the episode's snapshot (they once read the env's, where that uuid does
+    not exist)."""
+    from instructmove_ms.assets.snapshot import Frozen
     from instructmove_ms.evaluation import evaluate_config
     from instructmove_ms.policies import REFERENCE_POLICIES
 
-    revised = {c for c, builds in REVISIONS.items() if 2 in builds}  # what revision 2 rebuilt
-    printed = load_snapshot("printed")
     env_id, robot = "PickCategory-InstructMove", "franka"
-    spec = next(
-        s
-        for s in heldout.load_set(env_id, robot, "seen", version=4)
-        if printed[s.target_object.uuid].category in revised
-    )
+    stored = heldout.load_set(env_id, robot, "seen")[0]
+    shipped = load_snapshot()
+    per_category = len(shipped.of_category(stored.target_object.category))
+    categories = [o.category for o in stored.objects]
+    wider = load_snapshot(user_snapshot("wider", categories, per_category + 1, Frozen()))
+    extra = wider.of_category(stored.target_object.category)[per_category]
+    assert extra.uuid not in shipped
+    objects = list(stored.objects)
+    objects[stored.target] = dataclasses.replace(objects[stored.target], uuid=extra.uuid)
+    spec = dataclasses.replace(stored, snapshot="wider", objects=tuple(objects), certificate={})
     config = heldout.config_of(env_id, robot, "seen", "normal", [spec])
     evaluate_config(REFERENCE_POLICIES["oracle"](), config, tmp_path)
     (row,) = [json.loads(line) for line in (tmp_path / "episodes.jsonl").read_text().splitlines()]
     assert row["success"] and row["stage_score"] == 1.0, row
+
+
+def test_writing_sets_never_defaults_to_the_released_ones(capsys):
+    """``episodes write`` needs ``--out``: the package's released sets are never written
+    over."""
+    before = heldout.checksums(heldout.default_folder())
+    with pytest.raises(SystemExit) as exc:
+        main(["episodes", "write", "--task", "PickCategory-InstructMove", "--n", "1"])
+    assert exc.value.code == 2 and "--out" in capsys.readouterr().err
+    assert heldout.checksums(heldout.default_folder()) == before

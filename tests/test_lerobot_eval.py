@@ -251,22 +251,24 @@ def test_a_plain_env_starts_the_next_episode_at_each_reset_and_wraps_round():
         copied.claim(1000)
 
 
-def test_set_version_picks_the_stored_sets_an_env_plays():
-    """``set_version=2`` plays version 2's stored episodes (the instructions published
-    results were measured on), the default the current version's; a version the package
-    does not hold is refused by name."""
+def test_set_version_picks_the_stored_sets_an_env_plays(future_set_version):
+    """Beside a newer benchmark version, ``set_version=7`` plays 1.0's stored episodes (what
+    results on 1.0 were measured on), the default the newer version's; a version the
+    package does not hold is refused by name."""
     from instructmove_ms import heldout
 
-    for version in (2, heldout.SET_VERSION):
+    played = {}
+    for version in (7, None):
         env = _env(set_version=version)
         try:
+            played[version] = [e.spec.instruction for e in env.unwrapped.stored.config.episodes]
             stored = heldout.load_set(
                 EPISODES.env_id, EPISODES.robot, EPISODES.split, version=version
             )
-            played = [e.spec.instruction for e in env.unwrapped.stored.config.episodes]
-            assert played == [s.instruction for s in stored]
+            assert played[version] == [s.instruction for s in stored]
         finally:
             env.close()
+    assert played[7] != played[None]
     with pytest.raises(ValueError, match="set version 9"):
         _env(set_version=9)
 

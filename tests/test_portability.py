@@ -88,7 +88,7 @@ def test_a_generator_change_of_a_tenth_of_a_millimetre_or_a_colour_step_is_stale
 
     monkeypatch.setattr(snap, "generate_instance", generate)
     with pytest.raises(ValueError, match=r"stale: mug #5 \("):
-        snap._checked("default", _snapshot_data())
+        snap._checked(snap.DEFAULT_SNAPSHOT, _snapshot_data())
 
 
 def test_the_mass_a_material_gives_is_part_of_identity(monkeypatch):

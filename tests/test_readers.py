@@ -241,18 +241,24 @@ def test_the_cli_prints_briefs_and_scores(tmp_path):
     assert bad.returncode == 2 and "--seed" in bad.stderr
 
 
-def test_close_ups_can_show_another_library_revision():
+def test_close_ups_can_show_another_library_revision(revision_4):
+    """``--library N`` shows the snapshot's instances as a revision in the making builds
+    them (here a revision 4 of the mouse), before it is frozen; a revision older than a
+    category's build is refused by name."""
     from instructmove_ms.assets.catalog import instance_uuid
 
     mice = _small_catalog(["mouse"])
-    first = material.at_revision(mice, 1)
-    assert first.name == "test@r1" and len(first) == len(mice)
-    assert {i.uuid for i in first.instances} == {
-        instance_uuid("mouse", i.index) for i in mice.instances
+    fourth = material.at_revision(mice, 4)
+    assert fourth.name == "test@r4" and len(fourth) == len(mice)
+    assert {i.uuid for i in fourth.instances} == {
+        instance_uuid("mouse", i.index, 4) for i in mice.instances
     }
+    assert all(any(p.name == "tag" for p in i.parts) for i in fourth.instances)
     assert {i.uuid for i in mice.instances} == {
         instance_uuid("mouse", i.index, 2) for i in mice.instances
     }
+    with pytest.raises(ValueError, match="mouse has no build at library revision 1"):
+        material.at_revision(mice, 1)
 
 
 def test_in_scene_shows_an_object_in_the_camera_that_shows_most_of_it():

@@ -1,5 +1,6 @@
-"""Generator revisions: a revised category builds new assets, and every snapshot keeps
-regenerating the assets it was frozen with."""
+"""Generator revisions: every category has one build, which carries the library revision
+it came in (part of its instances' identity); a later revision adds a build on top, and every
+snapshot keeps regenerating the assets it was frozen with."""
 
 from __future__ import annotations
 
@@ -8,17 +9,30 @@ import json
 import numpy as np
 import pytest
 
+from conftest import with_a_tag
 from instructmove_ms.assets import snapshot as snap
 from instructmove_ms.assets.catalog import generate_instance, instance_uuid
-from instructmove_ms.assets.generators import LIBRARY, REVISIONS, generator_at, revised
+from instructmove_ms.assets.design import Design, Traits
+from instructmove_ms.assets.generators import (
+    GENERATORS,
+    LIBRARY,
+    REVISIONS,
+    generator,
+    generator_at,
+    revised,
+)
 from instructmove_ms.assets.textures import PRINTED_WORDS, image
 
-#: What revision 2 rebuilt, and a part (name, colour) that shows it.
+#: The builds of revision 2 (that revision 3 did not rebuild), and a part (name, colour)
+#: that shows each.
 REVISED_2 = {
     "mouse": ("seam_across", None),
     "alarm_clock": ("screen", "black"),
     "glue_gun": ("cord", "black"),
-    "chewing_gum": ("stick_0", "silver"),
+}
+#: What revision 2 gave categories that revision 3 rebuilt, and kept: a part that shows it.
+KEPT_FROM_2 = {
+    "chewing_gum": ("stick_0", "silver"),  # sticks pulled out of the sleeve
     "juice": ("neck", "transparent"),  # a clear neck over the juice
     "mini_sculpture": ("nose", None),  # a bust
 }
@@ -99,13 +113,18 @@ REPRINTED_3 = {"canned_coke", "chewing_gum", "chocolate", "juice", "milk_carton"
 MAX_PARTS = 60
 #: Revision -> category -> the part that shows the revision.
 REVISED = {2: REVISED_2, 3: {**REVISED_3_BATH, **REVISED_3_DESK, **REVISED_3_ROOM}}
-#: (category, revision) of every revised build.
+#: (category, revision) of every build past revision 1.
 BUILDS = sorted((c, r) for r, cats in REVISED.items() for c in cats)
+#: What ``generator_at`` says of a revision older than a category's build.
+NO_BUILD = (
+    "{category} has no build at library revision {asked}: its {which} came in revision "
+    "{came}; snapshots before revision 3 left the package at 1.0, see the git tag v0.1.0"
+)
 
 
-def _shows(inst, category: str, revision: int) -> bool:
-    name, color = REVISED[revision][category]
-    if revision == 3 and category in REPRINTED_3:
+def _shows(inst, part: tuple[str, str | None], printed: bool = False) -> bool:
+    name, color = part
+    if printed:
         return any(
             p.name == name and p.texture is not None and p.texture.pattern in PRINTED_WORDS
             for p in inst.parts
@@ -113,78 +132,180 @@ def _shows(inst, category: str, revision: int) -> bool:
     return any(p.name == name and color in (None, p.color) for p in inst.parts)
 
 
-def test_the_revised_categories_are_the_ones_registered():
-    registered = {(c, r) for c, builds in REVISIONS.items() for r in builds if r > 1}
+def _no_build(category: str, asked: int, came: int, which: str = "build") -> str:
+    return NO_BUILD.format(category=category, asked=asked, came=came, which=which)
+
+
+def test_every_category_has_one_build_and_the_revised_ones_are_listed():
+    assert all(list(builds.values()) == [GENERATORS[c]] for c, builds in REVISIONS.items())
+    assert set(REVISIONS) == set(GENERATORS)
+    registered = {(c, g.revision) for c, g in GENERATORS.items() if g.revision > 1}
     assert registered == set(BUILDS)
     assert LIBRARY == 3
 
 
+def test_the_shipped_snapshot_names_each_instance_by_its_builds_revision():
+    """``recognisable`` (revision 3) was frozen before the older builds left: each uuid it
+    names is the one the surviving build's revision gives (read from the file, nothing
+    rebuilt)."""
+    assert snap.frozen_as("recognisable") == snap.Frozen(textures=True, library=3)
+    entries = json.loads(snap.snapshot_path("recognisable").read_text())["instances"]
+    assert {e["category"] for e in entries} == set(GENERATORS)
+    for e in entries:
+        revision = GENERATORS[e["category"]].revision
+        assert e["uuid"] == instance_uuid(e["category"], e["index"], revision), e
+
+
 @pytest.mark.parametrize(("category", "revision"), BUILDS)
-def test_a_revision_is_a_new_asset_of_the_same_category(category, revision):
-    old, new = generator_at(category, revision - 1), generator_at(category, revision)
-    assert new.revision == revision and old.revision < revision
-    assert (old.synonyms, old.size, old.container) == (new.synonyms, new.size, new.container)
-    for index in range(10):
-        a = generate_instance(category, index, revision - 1)
-        b = generate_instance(category, index, revision)
-        assert b.uuid == instance_uuid(category, index, revision) != a.uuid
-        assert a.parts != b.parts
-    # the defining part is there (in the variants that have it), and never before
-    assert any(
-        _shows(generate_instance(category, i, revision), category, revision) for i in range(10)
-    )
-    assert not any(
-        _shows(generate_instance(category, i, revision - 1), category, revision) for i in range(10)
-    )
+def test_a_revised_build_is_its_own_asset_and_shows_its_revision(category, revision):
+    gen = generator_at(category, LIBRARY)
+    assert gen is GENERATORS[category] and gen.revision == revision
+    for later in range(revision, LIBRARY + 1):
+        assert generator_at(category, later) is gen
+    for earlier in range(1, revision):
+        with pytest.raises(ValueError) as err:
+            generator_at(category, earlier)
+        assert str(err.value) == _no_build(category, earlier, revision)
+    instances = [generate_instance(category, i, revision) for i in range(10)]
+    for i, inst in enumerate(instances):
+        assert inst.uuid == instance_uuid(category, i, revision) != instance_uuid(category, i)
+        assert inst == generate_instance(category, i)  # the newest library builds the same
+    # the defining part is there (in the variants that have it)
+    printed = revision == 3 and category in REPRINTED_3
+    assert any(_shows(inst, REVISED[revision][category], printed) for inst in instances)
+    if category in KEPT_FROM_2:
+        assert any(_shows(inst, KEPT_FROM_2[category]) for inst in instances)
 
 
 def test_an_unrevised_category_is_the_same_asset_at_every_revision():
-    assert generate_instance("mug", 3, 1) == generate_instance("mug", 3, 2)
+    assert GENERATORS["mug"].revision == 1
+    mugs = [generate_instance("mug", 3, library) for library in range(1, LIBRARY + 1)]
+    assert mugs[0] == mugs[1] == mugs[2] and mugs[0].uuid == instance_uuid("mug", 3)
 
 
-def test_each_shipped_snapshot_rebuilds_at_its_own_revision():
-    """The snapshots frozen before the revision keep their mice; the newest has the new
-    ones, and everything else is shared."""
-    mice = {n: snap.load_snapshot(n).of_category("mouse")[0] for n in snap.SHIPPED}
-    assert mice["printed"].uuid == mice["default"].uuid == instance_uuid("mouse", 0)
-    assert mice["detailed"].uuid == instance_uuid("mouse", 0, 2)
-    printed, detailed = (snap.load_snapshot(n) for n in ("printed", "detailed"))
-    moved = {i.uuid for i in printed.instances} - {i.uuid for i in detailed.instances}
-    assert {printed[u].category for u in moved} == set(REVISED_2)
-    assert len(moved) == 10 * len(REVISED_2)
-    assert snap.frozen_as("printed") == snap.Frozen(textures=True, library=1)
-    assert snap.frozen_as("detailed") == snap.Frozen(textures=True, library=2)
+# --- the mechanism, on a copy of the registry -------------------------------------------
+
+
+def test_a_revised_build_replaces_the_newest_from_its_revision_on(revision_4):
+    real = GENERATORS["mouse"]
+    new = revision_4.GENERATORS["mouse"]
+    assert new is revision_4.REVISIONS["mouse"][4] and new.revision == 4
+    assert new.build is not real.build
+    assert (new.synonyms, new.size, new.graspable, new.container) == (
+        real.synonyms,
+        real.size,
+        real.graspable,
+        real.container,
+    )
+    assert generator_at("mouse", 4) is new
+    assert generator_at("mouse", 3) is generator_at("mouse", 2) is real
+    with pytest.raises(ValueError) as err:
+        generator_at("mouse", 1)
+    assert str(err.value) == _no_build("mouse", 1, 2, which="first build")
+    assert generator_at("mug", 4) is GENERATORS["mug"]  # the other categories unchanged
+    for i in range(3):
+        old, rebuilt = generate_instance("mouse", i, 3), generate_instance("mouse", i, 4)
+        assert old.uuid == instance_uuid("mouse", i, 2)
+        assert rebuilt.uuid == instance_uuid("mouse", i, 4) != old.uuid
+        # its own draws (seeded by its uuid), and the part the revision added
+        assert any(p.name == "tag" for p in rebuilt.parts)
+        assert not any(p.name == "tag" for p in old.parts)
+        assert generate_instance("mug", i, 4) == generate_instance("mug", i, 3)
+
+
+def test_an_older_snapshot_keeps_its_build_after_a_revision(revision_4, tmp_path):
+    """A snapshot frozen at revision 3 still rebuilds its mice (and is not stale); one
+    frozen at revision 4 holds the new ones; the mugs are shared. A revision-3 file naming
+    a mouse as revision 4 built it is stale."""
+    for name, library in (("old", 3), ("new", 4)):
+        entries = snap.build_entries(["mouse", "mug"], 2, snap.Frozen(True, library))
+        snap.write_snapshot(tmp_path / f"{name}.json", name, entries, snap.Frozen(True, library))
+    old, new = snap.load_snapshot("old"), snap.load_snapshot("new")
+    for catalog, revision in ((old, 2), (new, 4)):
+        uuids = [i.uuid for i in catalog.of_category("mouse")]
+        assert uuids == [instance_uuid("mouse", i, revision) for i in (0, 1)]
+    assert old.of_category("mouse") == [generate_instance("mouse", i, 3) for i in (0, 1)]
+    assert old.of_category("mug") == new.of_category("mug")
+    moved = {i.uuid for i in old.instances} - {i.uuid for i in new.instances}
+    assert {old[u].category for u in moved} == {"mouse"} and len(moved) == 2
+    stale = [snap.entry_of(generate_instance("mouse", 0, 4))]
+    stale[0]["uuid"] = instance_uuid("mouse", 0, 2)
+    snap.write_snapshot(tmp_path / "bad.json", "bad", stale, snap.Frozen(True, 3))
+    with pytest.raises(ValueError, match="'bad' is stale: mouse #0"):
+        snap.load_snapshot("bad")
 
 
 def test_a_snapshot_file_from_before_revisions_reads_as_revision_1(tmp_path, monkeypatch):
-    data = json.loads(snap.snapshot_path("printed").read_text())
-    assert "library" not in data  # written before revisions: its bytes never changed
+    """A file without a library revision is at revision 1: a category built then rebuilds
+    alike; one whose build came later says so; a changed instance is stale."""
     monkeypatch.setattr(snap, "user_snapshot_dir", lambda: tmp_path)
-    entry = snap.entry_of(generate_instance("juice", 1, 1))
-    snap.write_snapshot(tmp_path / "mine.json", "mine", [entry], snap.Frozen(True, 1))
     snap.load_snapshot.cache_clear()
     try:
-        assert snap.load_snapshot("mine").instances[0] == generate_instance("juice", 1, 1)
+        entry = snap.entry_of(generate_instance("mug", 1, 1))
+        snap.write_snapshot(tmp_path / "mine.json", "mine", [entry], snap.Frozen(True, 1))
+        assert "library" not in json.loads((tmp_path / "mine.json").read_text())
+        assert snap.frozen_as("mine") == snap.Frozen(True, 1)
+        assert snap.load_snapshot("mine").instances[0] == generate_instance("mug", 1, 1)
+        juice = {**entry, "category": "juice", "uuid": instance_uuid("juice", 1)}
+        snap.write_snapshot(tmp_path / "gone.json", "gone", [juice], snap.Frozen(True, 1))
+        with pytest.raises(ValueError) as err:
+            snap.load_snapshot("gone")
+        assert str(err.value) == _no_build("juice", 1, 3)
         bad = {
-            **entry,
-            "content_hash": snap.entry_of(generate_instance("juice", 1)).get("content_hash"),
+            **snap.entry_of(generate_instance("juice", 1)),
+            "content_hash": snap.entry_of(generate_instance("juice", 2)).get("content_hash"),
         }
-        snap.write_snapshot(tmp_path / "bad.json", "bad", [bad], snap.Frozen(True, 2))
+        snap.write_snapshot(tmp_path / "bad.json", "bad", [bad], snap.Frozen(True, 3))
         with pytest.raises(ValueError, match="'bad' is stale: juice #1"):
             snap.load_snapshot("bad")
     finally:
         snap.load_snapshot.cache_clear()
 
 
-def test_bad_revisions_are_refused():
+def test_bad_revisions_are_refused(own_registry):
     with pytest.raises(ValueError, match="revision 4 is not in 1..3"):
         generator_at("mouse", 4)
+    with pytest.raises(ValueError, match="revision 0 is not in 1..3"):
+        generator_at("mouse", 0)
     with pytest.raises(ValueError, match="numbered 2..3, got 1"):
         revised("mouse", 1)
     with pytest.raises(ValueError, match="two builds at revision 2"):
         revised("mouse", 2)(lambda d: None)
     with pytest.raises(ValueError, match="cannot revise 'teapot'"):
         revised("teapot", 2)(lambda d: None)
+    with pytest.raises(ValueError, match="cannot revise 'toothpaste' at revision 2: its newest"):
+        revised("toothpaste", 2)(lambda d: None)
+    with pytest.raises(ValueError, match="two generators"):
+        generator("mug", size=(0.08, 0.13))(lambda d: None)
+    with pytest.raises(ValueError, match="a build's revision is in 1..3, got 4"):
+        generator("teapot", size=(0.1, 0.2), revision=4)
+    with pytest.raises(KeyError):
+        generator_at("teapot", 3)
+    assert own_registry.REVISIONS == REVISIONS  # nothing registered
+
+
+def test_a_category_can_come_in_a_later_revision_and_be_revised(own_registry):
+    """``generator(..., revision=2)`` registers a first build of revision 2: the revisions
+    before it have none; a revision 3 goes on top of it."""
+
+    def first(d: Design) -> Traits:
+        d.box("pot", (0.05, 0.05, 0.05), (0.0, 0.0, 0.05), "ceramic", "white")
+        return Traits(("white",), "ceramic", "cube")
+
+    generator("teapot", size=(0.1, 0.2), synonyms=("teapot",), revision=2)(first)
+    built = own_registry.GENERATORS["teapot"]
+    assert built.revision == 2 and own_registry.REVISIONS["teapot"] == {2: built}
+    assert generator_at("teapot", 2) is generator_at("teapot", 3) is built
+    with pytest.raises(ValueError) as err:
+        generator_at("teapot", 1)
+    assert str(err.value) == _no_build("teapot", 1, 2)
+    revised("teapot", 3)(with_a_tag(first))
+    assert generator_at("teapot", 2) is built
+    assert generator_at("teapot", 3).revision == 3 and generator_at("teapot", 3).build is not first
+    with pytest.raises(ValueError) as err:
+        generator_at("teapot", 1)
+    assert str(err.value) == _no_build("teapot", 1, 2, which="first build")
+    assert "teapot" not in GENERATORS  # the real registry untouched
 
 
 def test_the_digital_clock_shows_its_time_lit_on_a_dark_screen():

@@ -53,17 +53,17 @@ def test_the_shipped_uv_meshes_are_what_the_module_writes(shape):
     assert mesh_path(shape).read_text() == WRITERS[shape]()
 
 
-def test_printed_and_plain_snapshots_hold_the_same_bodies():
-    """The printed snapshot is the plain one with textures: same instances, parts,
-    colours and masses (so the same physics and layouts); only textured instances hash
-    apart, and every category a reader missed wears a print in its packaged kinds (a loose
-    cookie has none)."""
-    printed, plain = load_snapshot("printed"), load_snapshot("default")
-    assert [i.uuid for i in printed.instances] == [i.uuid for i in plain.instances]
+def test_a_plain_build_holds_the_same_bodies():
+    """An instance built plain (``--plain``) is the printed one without its textures: same
+    parts, colours and masses (so the same physics and layouts); only textured instances
+    hash apart, and every category a reader missed wears a print in its packaged kinds (a
+    loose cookie has none)."""
+    printed = load_snapshot()
     textured = set()
     for inst in printed.instances:
-        bare = plain[inst.uuid]
-        assert snap.plain(inst) == bare and inst.mass == bare.mass
+        bare = snap.plain(inst)
+        assert bare.uuid == inst.uuid and bare.mass == inst.mass
+        assert [p.rgb for p in bare.parts] == [p.rgb for p in inst.parts]
         assert all(p.texture is None for p in bare.parts)
         wears = any(p.texture is not None for p in inst.parts)
         assert (content_hash(inst) != content_hash(bare)) == wears
@@ -72,7 +72,7 @@ def test_printed_and_plain_snapshots_hold_the_same_bodies():
     assert len(textured) > 200
     for category in READER_MISSES:
         wearing = [i for i in printed.of_category(category) if i.uuid in textured]
-        assert len(wearing) >= 3, category
+        assert len(wearing) >= 2, category  # 2 of the 10 biscuits are packets
 
 
 def test_each_texture_keeps_its_part_colour_and_shows():
@@ -157,14 +157,14 @@ def test_a_snapshot_frozen_without_textures_rebuilds_them_plain(tmp_path, monkey
     """A snapshot file with no ``textures`` key (every one frozen before them) loads its
     instances plain and hash-checks them; the same entries marked textured are stale."""
     monkeypatch.setattr(snap, "user_snapshot_dir", lambda: tmp_path)
-    coke = generate_instance("canned_coke", 0, 1)  # as the snapshot (revision 1) builds it
-    assert any(p.texture is not None for p in coke.parts)
-    entry = snap.entry_of(snap.plain(coke))
+    notebook = generate_instance("notebook", 0, 1)  # as the snapshot (revision 1) builds it
+    assert any(p.texture is not None for p in notebook.parts)
+    entry = snap.entry_of(snap.plain(notebook))
     path = snap.write_snapshot(tmp_path / "old.json", "old", [entry], snap.Frozen(False, 1))
     data = {k: v for k, v in json.loads(path.read_text()).items() if k != "textures"}
     (loaded,) = snap._checked("old", data)
-    assert loaded == snap.plain(coke)
-    with pytest.raises(ValueError, match="is stale: canned_coke #0"):
+    assert loaded == snap.plain(notebook)
+    with pytest.raises(ValueError, match="is stale: notebook #0"):
         snap._checked("old", {**data, "textures": True})
 
 

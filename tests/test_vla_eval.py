@@ -101,21 +101,22 @@ def test_benchmark_options_are_checked() -> None:
     assert {"reach_pick", "place", "lift"} <= set(bench.get_metric_keys())
 
 
-def test_an_older_set_version_plays_its_own_stored_episodes() -> None:
-    """``set_version: 2`` reproduces results published on version 2: its tasks are named
-    apart and play version 2's instructions (which differ from the current version's)."""
+def test_a_released_set_version_plays_its_own_stored_episodes(future_set_version) -> None:
+    """Beside a newer benchmark version, ``set_version: 7`` reproduces results on 1.0: its
+    tasks are named apart and play 1.0's stored episodes (which differ from the newer
+    version's)."""
     from instructmove_ms import heldout
     from instructmove_ms.integrations.vla_eval import InstructMoveBenchmark
 
     env_id, split = "PickCategory-InstructMove", "unseen_category"
     played = {}
-    for version in (2, None):
+    for version in (7, None):
         bench = InstructMoveBenchmark(tasks=[env_id], robot="franka", set_version=version)
         (task,) = bench.get_tasks()
-        assert task.get("set_version") == version and task["name"].endswith("/v2") == bool(version)
+        assert task.get("set_version") == version and task["name"].endswith("/v7") == bool(version)
         episodes = bench._episodes(task["name"]).config.episodes
         played[version] = [e.spec.instruction for e in episodes]
-    for version, key in ((2, 2), (heldout.SET_VERSION, None)):
+    for version in (7, None):
         stored = heldout.load_set(env_id, "franka", split, version=version)
-        assert played[key] == [s.instruction for s in stored]
-    assert played[2] != played[None]
+        assert played[version] == [s.instruction for s in stored]
+    assert played[7] != played[None]

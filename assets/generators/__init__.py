@@ -12,7 +12,6 @@ from . import (  # noqa: F401  (registration)
     kitchenware,
     livingroom,
     receptacles,
-    reprints,  # the labels of food and groceries reprinted with words (revision 3)
     stationery,
     tools,
 )

@@ -5,12 +5,12 @@ from __future__ import annotations
 import math
 from itertools import pairwise
 
-from ..design import Design, Point, Traits
+from ..design import Design, Traits
 from ..parts import X_TO_Z, axis_angle_quat, quat_mul
 from ..textures import FRONT, Texture
 from ..vocab import COLORS
 from .desktop import BRIGHT
-from .registry import generator, revised
+from .registry import generator
 
 PASTEL = ["white", "white", "pink", "blue", "green", "beige", "purple", "yellow"]
 
@@ -23,61 +23,6 @@ def _flip_cap(d: Design, radius: float, z0: float, color: str) -> None:
         "cap_seam", radius + 0.0006, 0.0015, z0 + h * 0.65, "plastic", color, visual_only=True
     )
     d.box("cap_tab", (0.003, 0.005, 0.002), (radius, 0, z0 + h * 0.65), "plastic", color)
-
-
-def _pump(d: Design, z0: float, color: str, nozzle: float) -> None:
-    """A pump dispenser (collar, stem, head and a nozzle towards +x) standing on z0."""
-    collar = d.uniform(0.012, 0.015)
-    d.upright("collar", collar, 0.012, z0, "plastic", color)
-    stem = d.uniform(0.012, 0.025)
-    d.upright("stem", 0.0045, stem, z0 + 0.012, "plastic", color)
-    top = z0 + 0.012 + stem
-    d.upright("pump_head", collar * 0.9, 0.012, top, "plastic", color)
-    d.segment(
-        "nozzle",
-        "box",
-        (0, 0, top + 0.007),
-        (collar + nozzle, 0, top + 0.005),
-        (0.004, 0.0035),
-        "plastic",
-        color,
-    )
-
-
-def _polyline(
-    d: Design, name: str, points: list[Point], cross: tuple[float, float], color: str
-) -> None:
-    """Plastic boxes joining consecutive ``points``: a bent strip."""
-    for k, (a, b) in enumerate(pairwise(points)):
-        d.segment(f"{name}_{k}", "box", a, b, cross, "plastic", color)
-
-
-@generator(
-    "toothpaste",
-    size=(0.13, 0.22),
-    synonyms=("toothpaste", "toothpaste tube", "tube of toothpaste"),
-)
-def toothpaste(d: Design) -> Traits:
-    color = d.choice(["white", "white", "red", "blue", "green"])
-    stripe = d.choice([c for c in ("red", "blue", "green", "white", "silver") if c != color])
-    cap = d.choice(["white", "white", color, stripe])
-    a = d.uniform(0.055, 0.08)
-    w, h = d.uniform(0.018, 0.024), d.uniform(0.011, 0.014)
-    d.ellipsoid("tube", (a, w, h), (0, 0, h), "plastic", color)
-    d.ellipsoid(
-        "stripe",
-        (a * 0.45, w * 1.02, h * 1.04),
-        (a * 0.1, 0, h),
-        "plastic",
-        stripe,
-        visual_only=True,
-    )
-    seal = 0.1 * a + 0.004
-    d.box("seal", (seal, w * 1.15, 0.0012), (-a - 0.004 + seal, 0, h), "plastic", color)
-    d.rod("shoulder", h * 0.75, 0.01, (a * 0.95, 0, h), "plastic", color)
-    cap_len = d.uniform(0.012, 0.02)
-    d.rod("cap", h * 0.85, cap_len, (a * 0.95 + 0.005 + cap_len / 2, 0, h), "plastic", cap)
-    return Traits((color, stripe), "plastic", "elongated")
 
 
 #: A quarter turn about z: a box's x along +y, its y along -x (a top face's image then reads
@@ -101,7 +46,12 @@ def _top_print(d: Design, name: str, half: tuple[float, float], z: float, color:
     )
 
 
-@revised("toothpaste", 3)
+@generator(
+    "toothpaste",
+    size=(0.13, 0.22),
+    synonyms=("toothpaste", "toothpaste tube", "tube of toothpaste"),
+    revision=3,
+)
 def toothpaste_3(d: Design) -> Traits:
     """Revision 3: a flat white squeeze tube lying along y (flat on top, round at the
     sides), crimped flat at one end and with a wide flip-top cap at the other, printed
@@ -182,27 +132,6 @@ def toothpaste_3(d: Design) -> Traits:
     return Traits((color, stripe), "plastic", "elongated")
 
 
-@generator(
-    "mouthwash_cup",
-    size=(0.08, 0.12),
-    synonyms=("mouthwash cup", "rinse cup", "bathroom tumbler"),
-    container=True,
-)
-def mouthwash_cup(d: Design) -> Traits:
-    material = d.choice(["plastic", "plastic", "ceramic", "glass"])
-    color = "transparent" if material == "glass" else d.choice(PASTEL + ["gray"])
-    band = d.choice([c for c in ("white", "blue", "green", "gray", "pink") if c != color])
-    r, h, t = d.uniform(0.028, 0.036), d.uniform(0.085, 0.11), 0.004
-    flare = d.uniform(0.03, 0.1)
-    base, band_h = 0.007, d.uniform(0.01, 0.018)
-    d.upright("base", r + t, base, 0.0, material, color)
-    d.wall("wall", r, t, h - base - band_h, base, material, color, flare=flare)
-    top_r = r + math.tan(flare) * (h - base - band_h)
-    d.wall("band", top_r, t, band_h, h - band_h, material, band, flare=flare)
-    d.interior((r * 0.7, r * 0.7), floor_z=base, rim_z=h)
-    return Traits((color, band), material, "cylinder")
-
-
 def _panelled_wall(
     d: Design,
     name: str,
@@ -267,7 +196,13 @@ def _facet_print(
     )
 
 
-@revised("mouthwash_cup", 3)
+@generator(
+    "mouthwash_cup",
+    size=(0.08, 0.12),
+    synonyms=("mouthwash cup", "rinse cup", "bathroom tumbler"),
+    container=True,
+    revision=3,
+)
 def mouthwash_cup_3(d: Design) -> Traits:
     """Revision 3: a sturdy plastic toothbrush tumbler: eight thick flat panels flaring a
     little from a recessed foot round a heavy floor, the front panel printed with a tooth
@@ -387,33 +322,8 @@ def razor(d: Design) -> Traits:
     "nail_clipper",
     size=(0.05, 0.1),
     synonyms=("nail clipper", "nail clippers", "nail cutter"),
+    revision=3,
 )
-def nail_clipper(d: Design) -> Traits:
-    color = d.choice(["silver", "silver", "golden", "gray"])
-    lever = d.choice([color, color, "black", "red", "blue", "pink"])
-    length, w = d.uniform(0.055, 0.085), d.uniform(0.012, 0.016)
-    xb, xf = -length / 2, length / 2 - 0.005
-    d.box("lower_jaw", (length / 2, w / 2, 0.001), (0, 0, 0.001), "metal", color)
-    d.segment("upper_jaw", "box", (xb, 0, 0.003), (xf, 0, 0.0065), (w / 2, 0.001), "metal", color)
-    d.box("cutting_edge", (0.003, w / 2, 0.0035), (length / 2 - 0.003, 0, 0.0035), "metal", color)
-    d.box("joint", (0.003, w / 2, 0.002), (xb + 0.003, 0, 0.002), "metal", color)
-    pin = xf - 0.008
-    d.upright("pin", 0.0018, 0.011, 0.0, "metal", "silver", xy=(pin, 0))
-    top = 0.0115
-    d.segment(
-        "lever",
-        "box",
-        (pin + 0.004, 0, top),
-        (xb - 0.004, 0, top + 0.004),
-        (w * 0.55, 0.001),
-        "metal",
-        lever,
-    )
-    d.rod("lever_end", 0.002, w * 1.1, (xb - 0.004, 0, top + 0.004), "metal", lever, axis="y")
-    return Traits((color,) if lever == color else (color, lever), "metal", "elongated")
-
-
-@revised("nail_clipper", 3)
 def nail_clipper_3(d: Design) -> Traits:
     """Revision 3: lying along y, seen from the side: two springy jaws joined at a rounded
     rear with a key-ring hole, the upper one rising and bending down to a curved cutting
@@ -466,72 +376,8 @@ def nail_clipper_3(d: Design) -> Traits:
 
 
 @generator(
-    "dental_floss",
-    size=(0.035, 0.06),
-    synonyms=("dental floss", "floss", "floss dispenser"),
+    "hair_clip", size=(0.05, 0.1), synonyms=("hair clip", "claw clip", "hair claw"), revision=3
 )
-def dental_floss(d: Design) -> Traits:
-    color = d.choice(["white", "white", "blue", "green", "pink", "transparent"])
-    lid = d.choice([color, "white", "blue", "green"])
-    r, h = d.uniform(0.014, 0.019), d.uniform(0.014, 0.02)
-    half_len = d.choice([0.0, d.uniform(0.005, 0.01)])
-    base_h = h * 0.65
-    if half_len:
-        d.stadium("case", half_len, r, 0.0, base_h, "plastic", color, solid_fraction=0.7)
-        d.stadium("lid", half_len, r, base_h, h - base_h, "plastic", lid, solid_fraction=0.7)
-    else:
-        d.upright("case", r, base_h, 0.0, "plastic", color, solid_fraction=0.7)
-        tooth = Texture("badge", ("blue" if lid != "blue" else "white", "white"), "tooth")
-        d.upright("lid", r, h - base_h, base_h, "plastic", lid, solid_fraction=0.7, texture=tooth)
-    d.box(
-        "cutter", (0.0008, 0.005, 0.003), (half_len + r + 0.0008, 0, h - 0.003), "metal", "silver"
-    )
-    d.rod(
-        "thread",
-        0.0006,
-        0.01,
-        (half_len + r + 0.0025, 0, h - 0.001),
-        "fabric",
-        "white",
-        visual_only=True,
-    )
-    d.upright("window", r * 0.6, 0.0006, h, "plastic", "transparent", visual_only=True)
-    shape = "cuboid" if half_len else "disk"
-    return Traits((color,) if lid == color else (color, lid), "plastic", shape)
-
-
-@generator("hair_clip", size=(0.05, 0.1), synonyms=("hair clip", "claw clip", "hair claw"))
-def hair_clip(d: Design) -> Traits:
-    color = d.choice(["black", "brown", "pink", "beige", "transparent", "purple", "white"])
-    length, height = d.uniform(0.055, 0.09), d.uniform(0.032, 0.042)
-    bulge, teeth = d.uniform(0.016, 0.021), d.choice([4, 5, 6])
-    d.rod("hinge", 0.0045, length, (0, 0, height), "plastic", color)
-    d.rod("spring", 0.005, length * 0.3, (0, 0, height), "metal", "silver")
-    shoulder, knee = height * 0.88, height * d.uniform(0.65, 0.72)
-    pitch = length / teeth
-    for k, s in enumerate((-1, 1)):
-        shell = [(0, s * 0.003, height), (0, s * bulge, shoulder), (0, s * bulge * 0.97, knee)]
-        _polyline(d, f"shell_{k}", shell, (length / 2, 0.0017), color)
-        for j in range(teeth):
-            x = -length / 2 + pitch * (j + 0.25 + 0.5 * k)
-            tooth = [
-                (x, s * bulge * 0.97, knee),
-                (x, s * bulge * 0.8, height * 0.25),
-                (x, -s * 0.003, 0.0017),
-            ]
-            _polyline(d, f"tooth_{k}_{j}", tooth, (pitch * 0.16, 0.0017), color)
-    return Traits((color,), "plastic", "irregular")
-
-
-def _polyline_3(
-    d: Design, name: str, points: list[Point], cross, color: str, shape: str = "box", **kw
-) -> None:
-    """Plastic ``shape`` segments joining consecutive ``points`` (options passed on)."""
-    for k, (a, b) in enumerate(pairwise(points)):
-        d.segment(f"{name}_{k}", shape, a, b, cross, "plastic", color, **kw)
-
-
-@revised("hair_clip", 3)
 def hair_clip_3(d: Design) -> Traits:
     """Revision 3: a plastic claw clip standing on its teeth, its hinge across the view:
     each half curves out and down from the hinge, a smooth shell and then a comb of a few
@@ -579,44 +425,18 @@ def hair_clip_3(d: Design) -> Traits:
     return Traits((color,), "plastic", "irregular")
 
 
-@generator(
-    "shampoo_bottle",
-    size=(0.16, 0.26),
-    synonyms=("shampoo bottle", "shampoo", "bottle of shampoo"),
-)
-def shampoo_bottle(d: Design) -> Traits:
-    color = d.choice(BRIGHT + ["white", "white", "silver"])
-    cap = d.choice(["white", "black", "silver", color])
-    label = d.choice([c for c in ("white", "black", "silver", "golden") if c != color])
-    h, r = d.uniform(0.14, 0.2), d.uniform(0.016, 0.023)
-    half_len = d.choice([d.uniform(0.015, 0.025), d.uniform(0.008, 0.012)])
-    d.stadium("body", half_len, r, 0.0, h, "plastic", color, solid_fraction=0.6)
-    shoulder = d.uniform(0.012, 0.02)
-    d.ellipsoid(
-        "shoulder", (half_len + r, r, shoulder), (0, 0, h), "plastic", color, solid_fraction=0.6
-    )
-    d.box(
-        "label",
-        (half_len * 0.8 + r * 0.3, 0.0006, h * 0.28),
-        (0, r + 0.0006, h * 0.45),
-        "paper",
-        label,
-        visual_only=True,
-    )
-    neck = h + shoulder * 0.8
-    d.upright("neck", 0.011, 0.006, neck, "plastic", color)
-    _flip_cap(d, d.uniform(0.013, min(r, 0.018)), neck + 0.006, cap)
-    shape = "cuboid" if half_len > 0.014 else "cylinder"
-    return Traits((color, cap), "plastic", shape)
-
-
 def _luma(color: str) -> float:
     """How light ``color`` looks (Rec. 709 luma of its base sRGB)."""
     r, g, b = COLORS[color]
     return 0.2126 * r + 0.7152 * g + 0.0722 * b
 
 
-@revised("shampoo_bottle", 3)
+@generator(
+    "shampoo_bottle",
+    size=(0.16, 0.26),
+    synonyms=("shampoo bottle", "shampoo", "bottle of shampoo"),
+    revision=3,
+)
 def shampoo_bottle_3(d: Design) -> Traits:
     """Revision 3: a tall flattened oval bottle, its broad face towards the reader with a
     big label printed SHAMPOO, under a wide oval flip-top cap (or, on some, a pump) (the
@@ -672,129 +492,6 @@ def shampoo_bottle_3(d: Design) -> Traits:
     return Traits((color,) if cap == color else (color, cap), "plastic", "cuboid")
 
 
-@generator(
-    "soap_dish",
-    size=(0.09, 0.15),
-    synonyms=("soap dish", "soap holder", "soap tray"),
-    container=True,
-)
-def soap_dish(d: Design) -> Traits:
-    material = d.choice(["ceramic", "ceramic", "plastic", "wood"])
-    color = "brown" if material == "wood" else d.choice(PASTEL)
-    lx, ly = d.uniform(0.05, 0.065), d.uniform(0.035, 0.045)
-    floor, t, rim = 0.005, 0.005, d.uniform(0.016, 0.024)
-    rib_h = 0.003
-    if d.choice([True, False]):
-        d.box("floor", (lx, ly, floor / 2), (0, 0, floor / 2), material, color)
-        for k, s in enumerate((-1, 1)):
-            d.box(
-                f"wall_x{k}", (t / 2, ly, rim / 2), (s * (lx + t / 2), 0, rim / 2), material, color
-            )
-            d.box(
-                f"wall_y{k}",
-                (lx + t, t / 2, rim / 2),
-                (0, s * (ly + t / 2), rim / 2),
-                material,
-                color,
-            )
-        inner, shape = (lx, ly), "cuboid"
-    else:
-        d.upright("floor", lx, floor, 0.0, material, color)
-        d.wall("wall", lx, t, rim - floor, floor, material, color, segments=20, flare=0.35)
-        inner, shape = (lx * 0.7, lx * 0.7), "disk"
-    ribs = int(inner[0] / 0.012)
-    for k in range(ribs):
-        x = inner[0] * (2 * k + 1 - ribs) / ribs * 0.9
-        d.box(
-            f"rib_{k}",
-            (0.002, inner[1] * 0.8, rib_h / 2),
-            (x, 0, floor + rib_h / 2),
-            material,
-            color,
-        )
-    d.interior((inner[0] * 0.85, inner[1] * 0.75), floor_z=floor + rib_h, rim_z=rim)
-    return Traits((color,), material, shape)
-
-
-@generator(
-    "lotion",
-    size=(0.15, 0.25),
-    synonyms=("lotion", "lotion bottle", "body lotion"),
-)
-def lotion(d: Design) -> Traits:
-    color = d.choice(["white", "white", "beige", "pink", "purple", "blue", "green"])
-    pump = d.choice(["white", "black", "silver", "golden"])
-    r, h = d.uniform(0.026, 0.034), d.uniform(0.11, 0.16)
-    d.upright("body", r, h, 0.0, "plastic", color, solid_fraction=0.85)
-    label = d.choice([c for c in ("white", "golden", "green") if c != color])
-    d.upright("label", r + 0.0008, h * 0.5, h * 0.2, "paper", label, visual_only=True)
-    d.ellipsoid("shoulder", (r, r, 0.014), (0, 0, h), "plastic", color, solid_fraction=0.85)
-    _pump(d, h + 0.01, pump, nozzle=d.uniform(0.018, 0.028))
-    return Traits((color, pump), "plastic", "cylinder")
-
-
-@generator(
-    "hand_sanitizer",
-    size=(0.1, 0.2),
-    synonyms=("hand sanitizer", "sanitizer", "hand gel"),
-)
-def hand_sanitizer(d: Design) -> Traits:
-    cap = d.choice(["white", "blue", "green", "black", "purple"])
-    gel = d.choice(["transparent", "blue", "green"])
-    label = d.choice([c for c in ("blue", "green", "white", "red") if c not in (cap, gel)])
-    h, r = d.uniform(0.08, 0.13), d.uniform(0.015, 0.021)
-    half_len, fill = d.uniform(0.01, 0.018), h * d.uniform(0.6, 0.85)
-    d.stadium("gel", half_len, r, 0.0, fill, "plastic", gel, solid_fraction=0.95)
-    d.stadium("body", half_len, r, fill, h - fill, "plastic", "transparent", solid_fraction=0.1)
-    d.box(
-        "label",
-        (half_len + r * 0.6, 0.0006, h * 0.2),
-        (0, r + 0.0006, h * 0.35),
-        "paper",
-        label,
-        visual_only=True,
-        texture=Texture("sticker", ("white" if label != "white" else "blue",), "drop"),
-    )
-    d.ellipsoid(
-        "shoulder", (half_len + r, r, 0.01), (0, 0, h), "plastic", "transparent", solid_fraction=0.3
-    )
-    if d.choice([True, False]):
-        _pump(d, h + 0.006, cap, nozzle=d.uniform(0.012, 0.018))
-    else:
-        d.upright("neck", 0.01, 0.006, h + 0.006, "plastic", "transparent")
-        _flip_cap(d, d.uniform(0.012, 0.015), h + 0.012, cap)
-    return Traits(("transparent", cap if gel == "transparent" else gel), "plastic", "cuboid")
-
-
-@generator(
-    "facial_cleanser",
-    size=(0.11, 0.2),
-    synonyms=("facial cleanser", "face wash", "cleanser tube"),
-)
-def facial_cleanser(d: Design) -> Traits:
-    color = d.choice(["white", "white", "blue", "green", "pink", "orange", "purple"])
-    cap = d.choice([c for c in ("white", "blue", "silver", "black", "pink") if c != color])
-    cap_r, cap_h = d.uniform(0.016, 0.02), d.uniform(0.016, 0.022)
-    half_len = d.uniform(0.004, 0.008)
-    d.stadium("cap", half_len, cap_r, 0.0, cap_h, "plastic", cap)
-    tube_h = d.uniform(0.05, 0.07)
-    w, t = d.uniform(0.022, 0.027), d.uniform(0.014, 0.017)
-    d.upright("shoulder", cap_r * 0.8, 0.01, cap_h, "plastic", color)
-    center = cap_h + tube_h * 0.9
-    d.ellipsoid("tube", (w, t, tube_h), (0, 0, center), "plastic", color)
-    d.ellipsoid(
-        "print",
-        (w * 1.02, t * 1.05, tube_h * 0.35),
-        (0, 0, center + tube_h * 0.1),
-        "plastic",
-        cap,
-        visual_only=True,
-    )
-    top = center + tube_h
-    d.box("crimp", (w * 1.1, 0.0012, 0.006), (0, 0, top - 0.004), "plastic", color)
-    return Traits((color, cap), "plastic", "cylinder")
-
-
 def _flat_tube(d: Design, name: str, t: float, w: float, z0: float, h: float, color, **kw):
     """An upright flattened tube section from z0 up ``h``: a box ``2 t`` deep (x) and two
     round sides of radius ``t`` at y = +-(w - t), ``2 w`` wide in all."""
@@ -804,7 +501,12 @@ def _flat_tube(d: Design, name: str, t: float, w: float, z0: float, h: float, co
         d.upright(f"{name}_side_{k}", t, h, z0, "plastic", color, xy=(0, s * core))
 
 
-@revised("facial_cleanser", 3)
+@generator(
+    "facial_cleanser",
+    size=(0.11, 0.2),
+    synonyms=("facial cleanser", "face wash", "cleanser tube"),
+    revision=3,
+)
 def facial_cleanser_3(d: Design) -> Traits:
     """Revision 3: a slim flattened squeeze tube standing on its wide flip-top cap, its
     flat front printed FACE WASH (or FACIAL CLEANSER) and crimped flat at the top (the
@@ -900,7 +602,12 @@ def _pump_y(d: Design, z0: float, color: str, nozzle: float) -> None:
     )
 
 
-@revised("hand_sanitizer", 3)
+@generator(
+    "hand_sanitizer",
+    size=(0.1, 0.2),
+    synonyms=("hand sanitizer", "sanitizer", "hand gel"),
+    revision=3,
+)
 def hand_sanitizer_3(d: Design) -> Traits:
     """Revision 3: a flat clear bottle of tinted gel (bubbles in it), its broad face
     towards the reader with a label printed HAND SANITIZER, under a pump or a flip cap
@@ -943,7 +650,9 @@ def hand_sanitizer_3(d: Design) -> Traits:
     return Traits(("transparent", cap if gel == "transparent" else gel), "plastic", "cuboid")
 
 
-@revised("lotion", 3)
+@generator(
+    "lotion", size=(0.15, 0.25), synonyms=("lotion", "lotion bottle", "body lotion"), revision=3
+)
 def lotion_3(d: Design) -> Traits:
     """Revision 3: a tall creamy bottle with a long pump, printed BODY LOTION (or HAND
     LOTION) front and back (the first, with a plain band, read as a soap
@@ -962,7 +671,12 @@ def lotion_3(d: Design) -> Traits:
     return Traits((color, pump), "plastic", "cylinder")
 
 
-@revised("dental_floss", 3)
+@generator(
+    "dental_floss",
+    size=(0.035, 0.06),
+    synonyms=("dental floss", "floss", "floss dispenser"),
+    revision=3,
+)
 def dental_floss_3(d: Design) -> Traits:
     """Revision 3: a small flat rounded case with a snap lid printed FLOSS over a tooth,
     and the thread coming out over the metal cutter on its front, hanging down (the
@@ -1010,7 +724,13 @@ def dental_floss_3(d: Design) -> Traits:
     return Traits((color,) if lid == color else (color, lid), "plastic", "cuboid")
 
 
-@revised("soap_dish", 3)
+@generator(
+    "soap_dish",
+    size=(0.09, 0.15),
+    synonyms=("soap dish", "soap holder", "soap tray"),
+    container=True,
+    revision=3,
+)
 def soap_dish_3(d: Design) -> Traits:
     """Revision 3: a shallow tray on little feet, its low wall with a lip, and raised
     drain ridges across its floor with the drain slots between them (the first, a deeper

@@ -7,7 +7,7 @@ import math
 from ..design import Design, Traits
 from ..parts import X_TO_Y, X_TO_Z, axis_angle_quat
 from ..textures import Texture
-from .registry import generator, revised
+from .registry import generator
 
 
 def _open_lid(
@@ -40,54 +40,8 @@ def _open_lid(
     synonyms=("storage box", "storage bin", "storage container"),
     graspable=False,
     container=True,
+    revision=3,
 )
-def storage_box(d: Design) -> Traits:
-    material, color = d.choice(
-        [
-            ("plastic", "transparent"),
-            ("plastic", "white"),
-            ("plastic", "gray"),
-            ("plastic", "blue"),
-            ("plastic", "pink"),
-            ("fabric", "beige"),
-            ("fabric", "gray"),
-            ("fabric", "blue"),
-        ]
-    )
-    hx, hy, h = d.uniform(0.11, 0.18), d.uniform(0.08, 0.12), d.uniform(0.1, 0.17)
-    t = 0.003 if material == "plastic" else 0.006
-    floor = d.open_box("box", (hx, hy), h, t, material, color, full="y")
-    lip = d.choice([color, "white", "black"])
-    for k, sign in enumerate((-1, 1)):
-        d.box(
-            f"lip_y{k}",
-            (hx + 0.004, 0.004, 0.003),
-            (0, sign * (hy + 0.001), h - 0.003),
-            material,
-            lip,
-        )
-        d.box(
-            f"grip_hole_{k}",
-            (0.001, hy * 0.3, 0.009),
-            (sign * (hx + 0.0006), 0, h - 0.022),
-            material,
-            "black",
-            visual_only=True,
-        )
-    d.box(
-        "label",
-        (hx * 0.25, 0.0005, h * 0.12),
-        (0, hy + 0.0006, h * 0.55),
-        "paper",
-        "white",
-        visual_only=True,
-    )
-    d.interior((hx - t - 0.005, hy - t - 0.005), floor_z=floor, rim_z=h)
-    colors = (color,) if lip == color else (color, lip)
-    return Traits(colors, material, "cuboid")
-
-
-@revised("storage_box", 3)
 def storage_box_3(d: Design) -> Traits:
     """Revision 3: an open moulded plastic storage bin, long and lower than it is long: thin
     walls stiffened by vertical moulded ribs, a thick rolled lip round the top standing out
@@ -170,28 +124,8 @@ JEWELRY_BOX_FINISHES = [
     size=(0.1, 0.22),
     synonyms=("jewelry box", "jewellery box", "trinket box"),
     container=True,
+    revision=3,
 )
-def jewelry_box(d: Design) -> Traits:
-    material, color = d.choice(JEWELRY_BOX_FINISHES)
-    lining = d.choice([c for c in ("red", "purple", "black", "beige", "blue") if c != color])
-    hx, hy, h = d.uniform(0.05, 0.09), d.uniform(0.035, 0.06), d.uniform(0.04, 0.06)
-    t = 0.006
-    floor = d.open_box("base", (hx, hy), h, t, material, color, full="y")
-    d.box("lining", (hx - t, hy - t, 0.001), (0, 0, floor + 0.001), "fabric", lining)
-    d.box(
-        "clasp",
-        (0.006, 0.001, 0.005),
-        (0, hy + 0.001, h - 0.006),
-        "metal",
-        "golden",
-        visual_only=True,
-    )
-    _open_lid(d, "lid", hx, hy, 0.008, (0, -hy + 0.004, h), material, color, mirror=True)
-    d.interior((hx - t - 0.004, hy - t - 0.004), floor_z=floor + 0.002, rim_z=h)
-    return Traits((color, lining), material, "cuboid")
-
-
-@revised("jewelry_box", 3)
 def jewelry_box_3(d: Design) -> Traits:
     """Revision 3: an open jewellery box, its hinged lid leaning back with a mirror in it,
     lined in velvet: at the back, velvet ring rolls nearly up to the rim, two or three gold
@@ -272,35 +206,9 @@ def jewelry_box_3(d: Design) -> Traits:
     return Traits((color, velvet), material, "cuboid")
 
 
-@generator("glasses_case", size=(0.14, 0.19), synonyms=("glasses case", "spectacle case"))
-def glasses_case(d: Design) -> Traits:
-    material, color, fill = d.choice(
-        [
-            ("leather", "brown", 0.2),
-            ("leather", "black", 0.2),
-            ("plastic", "black", 0.2),
-            ("plastic", "blue", 0.2),
-            ("plastic", "purple", 0.2),
-            ("aluminium", "silver", 0.07),
-            ("leather", "red", 0.2),
-        ]
-    )
-    length, w = d.uniform(0.145, 0.17), d.uniform(0.052, 0.065)
-    hb = d.uniform(0.016, 0.022)
-    hd = hb * d.uniform(0.75, 1.0)
-    core = length / 2 - w / 2
-    kw = dict(solid_fraction=fill)
-    d.box("shell", (core, w / 2, hb / 2), (0, 0, hb / 2), material, color, **kw)
-    for k, sign in enumerate((-1, 1)):
-        d.upright(f"end_{k}", w / 2, hb, 0.0, material, color, xy=(sign * core, 0), **kw)
-    d.ellipsoid("lid", (length / 2, w / 2, hd), (0, 0, hb), material, color, **kw)
-    seam = d.choice(["black", "gray", "silver"] if color != "black" else ["gray", "silver"])
-    d.box("seam", (core, w / 2 + 0.0005, 0.0008), (0, 0, hb), material, seam, visual_only=True)
-    d.box("hinge", (core * 0.5, 0.002, 0.003), (0, -w / 2, hb), "metal", "silver", visual_only=True)
-    return Traits((color,), material, "ellipsoid")
-
-
-@revised("glasses_case", 3)
+@generator(
+    "glasses_case", size=(0.14, 0.19), synonyms=("glasses case", "spectacle case"), revision=3
+)
 def glasses_case_3(d: Design) -> Traits:
     """Revision 3: a hard clamshell case standing open, a pair of round glasses folded inside
     in thick dark rims, with a bridge, hinges and folded temples (the closed first case read
@@ -463,53 +371,8 @@ def pill_organizer(d: Design) -> Traits:
     size=(0.12, 0.26),
     synonyms=("remote holder", "remote control holder", "remote caddy"),
     container=True,
+    revision=3,
 )
-def remote_holder(d: Design) -> Traits:
-    material, color = d.choice(
-        [
-            ("wood", "brown"),
-            ("wood", "beige"),
-            ("plastic", "black"),
-            ("plastic", "white"),
-            ("leather", "black"),
-            ("leather", "brown"),
-            ("plastic", "gray"),
-        ]
-    )
-    t = 0.008 if material == "wood" else 0.005
-    rows, hx = d.choice([2, 2, 3]), d.uniform(0.07, 0.11)
-    depth = d.uniform(0.032, 0.042)
-    hy = rows * depth / 2 + t / 2
-    heights = [d.uniform(0.045, 0.06) + k * d.uniform(0.025, 0.035) for k in range(rows + 1)]
-    d.box("floor", (hx, hy, t / 2), (0, 0, t / 2), material, color)
-    for k, wall_h in enumerate(heights):
-        y = hy - t / 2 - k * depth
-        d.box(f"wall_{k}", (hx, t / 2, wall_h / 2), (0, y, wall_h / 2), material, color)
-        if k == rows:
-            continue
-        for j, sign in enumerate((-1, 1)):
-            side_h = heights[k + 1]
-            d.box(
-                f"side_{k}_{j}",
-                (t / 2, depth / 2 - t / 2, side_h / 2),
-                (sign * (hx - t / 2), y - depth / 2, side_h / 2),
-                material,
-                color,
-            )
-    d.box(
-        "divider",
-        (t / 2, depth / 2 - t, heights[0] / 2 - 0.008),
-        (0, hy - depth / 2, heights[0] / 2),
-        material,
-        color,
-    )
-    d.interior(
-        (hx / 2 - t, depth / 2 - t), floor_z=t, rim_z=heights[0], center=(hx / 2, hy - depth / 2)
-    )
-    return Traits((color,), material, "cuboid")
-
-
-@revised("remote_holder", 3)
 def remote_holder_3(d: Design) -> Traits:
     """Revision 3: an open caddy with TV remotes standing in two of its pockets (the empty
     stepped caddy read as a shelf, a bench or a spice rack); the third pocket stays free."""
@@ -638,15 +501,7 @@ def flashlight(d: Design) -> Traits:
 ALARM_CLOCK_COLORS = ["red", "black", "white", "blue", "green", "silver", "pink", "yellow"]
 
 
-@generator("alarm_clock", size=(0.08, 0.18), synonyms=("alarm clock",))
-def alarm_clock(d: Design) -> Traits:
-    color = d.choice(ALARM_CLOCK_COLORS)
-    if d.rng.random() < 0.5:
-        return _digital_clock(d, color)
-    return _twin_bell_clock(d, color)
-
-
-@revised("alarm_clock", 2)
+@generator("alarm_clock", size=(0.08, 0.18), synonyms=("alarm clock",), revision=2)
 def alarm_clock_2(d: Design) -> Traits:
     """Revision 2: the digital clock is a low wedge with a lit seven-segment time on a dark
     screen and buttons on top (the first read as a radio); the twin-bell clock is unchanged."""
@@ -706,31 +561,6 @@ def _twin_bell_clock(d: Design, color: str) -> Traits:
         quat=X_TO_Y,
     )
     return Traits((color,), material, "cylinder")
-
-
-def _digital_clock(d: Design, color: str) -> Traits:
-    hx, hy, hz = d.uniform(0.02, 0.03), d.uniform(0.045, 0.07), d.uniform(0.03, 0.045)
-    d.box("body", (hx, hy, hz), (0, 0, hz), "plastic", color, solid_fraction=0.35)
-    d.box(
-        "display",
-        (0.0005, hy * 0.8, hz * 0.55),
-        (hx + 0.0005, 0, hz * 1.05),
-        "glass",
-        "black",
-        visual_only=True,
-    )
-    digit = d.choice(["red", "green", "blue", "white"])
-    for k, y in enumerate((-0.6, -0.25, 0.25, 0.6)):
-        d.box(
-            f"digit_{k}",
-            (0.0004, hy * 0.12, hz * 0.35),
-            (hx + 0.0012, y * hy, hz * 1.05),
-            "plastic",
-            digit,
-            visual_only=True,
-        )
-    d.box("snooze", (hx * 0.5, hy * 0.4, 0.003), (0, 0, 2 * hz + 0.003), "plastic", "gray")
-    return Traits((color,), "plastic", "cuboid")
 
 
 def _digital_clock_2(d: Design, color: str) -> Traits:

@@ -6,7 +6,7 @@ import math
 
 from ..design import Design, Traits
 from ..textures import Texture
-from .registry import generator, revised
+from .registry import generator
 
 BRIGHT = ["red", "blue", "green", "black", "yellow", "orange", "purple", "pink"]
 
@@ -28,23 +28,6 @@ def marker(d: Design) -> Traits:
         color,
     )
     return Traits((body, color), "plastic", "cylinder")
-
-
-@generator("eraser", size=(0.04, 0.08), synonyms=("eraser", "rubber eraser"))
-def eraser(d: Design) -> Traits:
-    color = d.choice(["white", "pink", "blue", "green"])
-    sleeve = d.choice(["blue", "black", "red", "yellow"])
-    lx, ly, lz = d.uniform(0.045, 0.065), d.uniform(0.02, 0.026), d.uniform(0.01, 0.013)
-    d.box("block", (lx / 2, ly / 2, lz / 2), (0, 0, lz / 2), "rubber", color)
-    d.box(
-        "sleeve",
-        (lx * 0.3, ly / 2 + 0.0008, lz / 2 + 0.0008),
-        (-lx * 0.12, 0, lz / 2),
-        "paper",
-        sleeve,
-        visual_only=True,
-    )
-    return Traits((color, sleeve), "rubber", "cuboid")
 
 
 @generator(
@@ -91,7 +74,7 @@ def usb_drive(d: Design) -> Traits:
     return Traits((color,), "plastic", "cuboid")
 
 
-@revised("eraser", 3)
+@generator("eraser", size=(0.04, 0.08), synonyms=("eraser", "rubber eraser"), revision=3)
 def eraser_3(d: Design) -> Traits:
     """Revision 3: a soft block eraser, its used end worn round and smudged grey with
     rubbings lying beside it, the rest in a thin printed card sleeve (the square two-tone

@@ -7,7 +7,7 @@ import math
 from ..design import Design, Traits
 from ..parts import X_TO_Z, axis_angle_quat, quat_mul
 from ..textures import Texture
-from .registry import generator, revised
+from .registry import generator
 
 
 def _pill(d: Design, name: str, length, width, height, z0, material, color, **kw) -> None:
@@ -35,20 +35,7 @@ def beam(d: Design, name: str, p1, p2, half_w: float, half_t: float, material: s
 MOUSE_COLORS = ["black", "gray", "white", "silver", "blue", "red"]
 
 
-@generator("mouse", size=(0.09, 0.13), synonyms=("computer mouse", "mouse"))
-def mouse(d: Design) -> Traits:
-    shell = d.choice(MOUSE_COLORS)
-    skirt = d.choice(["black", "gray", shell])
-    lx, w, h = d.uniform(0.095, 0.125), d.uniform(0.055, 0.068), d.uniform(0.032, 0.042)
-    _mouse_body(d, shell, skirt, lx, w, h)
-    x = lx * 0.22
-    top = h / 2 + h / 2 * math.sqrt(1 - (2 * x / lx) ** 2)
-    wheel = d.choice(["black", "gray"])
-    d.rod("wheel", 0.0065, 0.006, (x, 0, top - 0.0025), "rubber", wheel, axis="y", visual_only=True)
-    return Traits((shell, skirt), "plastic", "ellipsoid")
-
-
-@revised("mouse", 2)
+@generator("mouse", size=(0.09, 0.13), synonyms=("computer mouse", "mouse"), revision=2)
 def mouse_2(d: Design) -> Traits:
     """Revision 2: the two buttons show (a seam between them up to the wheel, and one
     across behind them) and the wheel stands proud in the gap."""
@@ -96,55 +83,6 @@ def _mouse_body(d: Design, shell: str, skirt: str, lx: float, w: float, h: float
     )
 
 
-@generator(
-    "ac_remote",
-    size=(0.12, 0.18),
-    synonyms=("ac remote", "air conditioner remote", "aircon remote"),
-)
-def ac_remote(d: Design) -> Traits:
-    color = d.choice(["white", "white", "beige", "gray", "silver"])
-    keys = "gray" if color in ("white", "beige") else "white"
-    lx, w, t = d.uniform(0.13, 0.17), d.uniform(0.045, 0.058), d.uniform(0.016, 0.022)
-    core = lx - t
-    d.box("body", (core / 2, w / 2, t / 2), (0, 0, t / 2), "plastic", color, solid_fraction=0.6)
-    for sign in (-1, 1):
-        d.rod(
-            f"end_{sign}",
-            t / 2,
-            w,
-            (sign * core / 2, 0, t / 2),
-            "plastic",
-            color,
-            axis="y",
-            solid_fraction=0.3,
-        )
-    screen_x = core / 2 - lx * 0.16
-    d.box(
-        "screen",
-        (lx * 0.13, w * 0.36, 0.0004),
-        (screen_x, 0, t + 0.0004),
-        "plastic",
-        "gray",
-        visual_only=True,
-    )
-    for k in (-1, 1):
-        digit = (screen_x, k * w * 0.08, t + 0.001)
-        d.box(
-            f"digit_{k}", (lx * 0.05, w * 0.06, 0.0003), digit, "plastic", "black", visual_only=True
-        )
-    x = screen_x - lx * 0.2
-    dot(d, "power", 0.0055, x, w * 0.25, t, d.choice(["red", "orange"]))
-    for k in (-1, 1):
-        dot(d, f"temp_{k}", 0.006, x, k * 0.002 - w * 0.12 + k * 0.007, t, "blue")
-    for row in range(2):
-        for col in (-1, 0, 1):
-            key = (x - 0.02 - row * 0.014, col * w * 0.28, t + 0.0005)
-            d.box(
-                f"key_{row}_{col}", (0.004, w * 0.1, 0.0005), key, "rubber", keys, visual_only=True
-            )
-    return Traits((color,), "plastic", "cuboid")
-
-
 #: The lit segments of a seven-segment digit (a top, b top right, c bottom right, d bottom,
 #: e bottom left, f top left, g middle), and the ends of each in a cell one wide, two high.
 LCD_LIT = {
@@ -180,7 +118,12 @@ def lcd_glyph(d: Design, name: str, glyph: str, top_left, cell: float, z: float,
         )
 
 
-@revised("ac_remote", 3)
+@generator(
+    "ac_remote",
+    size=(0.12, 0.18),
+    synonyms=("ac remote", "air conditioner remote", "aircon remote"),
+    revision=3,
+)
 def ac_remote_3(d: Design) -> Traits:
     """Revision 3: a white air-conditioner remote whose top third is a large display (its
     top towards -x): a snowflake, a fan and COOL over the set temperature in big digits
@@ -314,41 +257,6 @@ def ac_remote_3(d: Design) -> Traits:
     return Traits((color,), "plastic", "cuboid")
 
 
-@generator(
-    "presenter_clicker",
-    size=(0.085, 0.14),
-    synonyms=("presentation clicker", "slide clicker", "presentation remote", "presenter"),
-)
-def presenter_clicker(d: Design) -> Traits:
-    color = d.choice(["black", "black", "gray", "silver", "white", "blue"])
-    rocker = d.choice(["gray", "black", "silver"] if color != "black" else ["gray", "silver"])
-    lx, w, t = d.uniform(0.09, 0.13), d.uniform(0.024, 0.034), d.uniform(0.012, 0.018)
-    _pill(d, "body", lx, w, t, 0.0, "plastic", color, solid_fraction=0.6)
-    _pill(
-        d,
-        "rocker",
-        lx * 0.32,
-        w * 0.62,
-        0.001,
-        t,
-        "rubber",
-        rocker,
-        xy=(-lx * 0.02, 0),
-        visual_only=True,
-    )
-    d.box(
-        "rocker_split",
-        (0.0005, w * 0.3, 0.0005),
-        (-lx * 0.02, 0, t + 0.0012),
-        "rubber",
-        "black",
-        visual_only=True,
-    )
-    dot(d, "laser_button", w * 0.16, lx * 0.27, 0, t, "red")
-    d.rod("aperture", 0.002, 0.001, (lx / 2 + 0.0005, 0, t / 2), "glass", "red", visual_only=True)
-    return Traits((color,), "plastic", "elongated")
-
-
 def _arrowhead(
     d: Design, name: str, x: float, y: float, z: float, size: float, point: int, ink: str
 ) -> None:
@@ -365,7 +273,12 @@ def _arrowhead(
         )
 
 
-@revised("presenter_clicker", 3)
+@generator(
+    "presenter_clicker",
+    size=(0.085, 0.14),
+    synonyms=("presentation clicker", "slide clicker", "presentation remote", "presenter"),
+    revision=3,
+)
 def presenter_clicker_3(d: Design) -> Traits:
     """Revision 3: a short, slim presenter stick lying across the view: only three keys in a
     row on top, a red laser key by the nose and two big page keys marked with white forward
@@ -482,34 +395,8 @@ def gamepad(d: Design) -> Traits:
     "earbud_case",
     size=(0.045, 0.075),
     synonyms=("earbud case", "earbuds case", "earphone case"),
+    revision=3,
 )
-def earbud_case(d: Design) -> Traits:
-    color = d.choice(["white", "white", "black", "gray", "blue", "pink", "green"])
-    if d.rng.random() < 0.5:  # standing, the lid on top
-        lx, depth, h, split = d.uniform(0.045, 0.062), d.uniform(0.02, 0.027), 0.05, 0.72
-        h *= d.uniform(0.9, 1.1)
-    else:  # lying, a clamshell
-        lx, depth, h, split = d.uniform(0.055, 0.07), d.uniform(0.04, 0.052), 0.028, 0.55
-        h *= d.uniform(0.88, 1.12)
-    z = h * split
-    _pill(d, "base", lx, depth, z - 0.0005, 0.0, "plastic", color, solid_fraction=0.5)
-    _pill(d, "seam", lx - 0.0015, depth - 0.0015, 0.001, z - 0.0005, "plastic", "gray")
-    _pill(d, "lid", lx, depth, h - z - 0.0005, z + 0.0005, "plastic", color, solid_fraction=0.4)
-    led = d.choice(["green", "white", "orange"])
-    d.rod(
-        "led",
-        0.0012,
-        0.0006,
-        (0, depth / 2 + 0.0003, z * 0.55),
-        "plastic",
-        led,
-        axis="y",
-        visual_only=True,
-    )
-    return Traits((color,), "plastic", "cuboid")
-
-
-@revised("earbud_case", 3)
 def earbud_case_3(d: Design) -> Traits:
     """Revision 3: the case stands with its lid flipped open, the two earbuds seated in it
     showing their heads and speaker grilles (the closed first case read as a round box or a
@@ -700,118 +587,14 @@ def charging_cable(d: Design) -> Traits:
     "mini_sculpture",
     size=(0.06, 0.16),
     synonyms=("figurine", "statuette", "mini sculpture", "small sculpture"),
+    revision=3,
 )
-def mini_sculpture(d: Design) -> Traits:
-    return _sculpture(d, "orb")
-
-
-@revised("mini_sculpture", 2)
-def mini_sculpture_2(d: Design) -> Traits:
-    """Revision 2: a bust (shoulders, neck, head with a nose) where the first had an orb on
-    a cup, which read as a crystal ball or a door knob; the other kinds are unchanged."""
-    return _sculpture(d, "bust")
-
-
-@revised("mini_sculpture", 3)
 def mini_sculpture_3(d: Design) -> Traits:
     """Revision 3: always a statue of a person, a marble or bronze bust on a round socle or
     a classical statue of a woman in a long draped gown (the abstract kinds read as a cairn
     or a ring, the ellipsoid figure with a knob head as a joystick, and a standing figure
     with jointed limbs as an artist's mannequin)."""
     return _sculpture_3(d)
-
-
-def _plinth(d: Design) -> tuple[str, str, float, str, float, float]:
-    """A sculpture's material, colour and solid fill, and its plinth (colour, width,
-    height), built."""
-    material = d.choice(["stone", "stone", "ceramic", "metal", "wood"])
-    color = d.choice(
-        {
-            "stone": ["white", "gray", "black", "beige"],
-            "ceramic": ["white", "blue", "black", "green"],
-            "metal": ["golden", "silver", "black"],
-            "wood": ["brown", "beige"],
-        }[material]
-    )
-    fill = 0.3 if material == "metal" else 1.0
-    plinth_mat = d.choice(["wood", "stone"])
-    plinth = d.choice(["brown", "black"] if plinth_mat == "wood" else ["black", "white", "gray"])
-    pw, ph = d.uniform(0.035, 0.055), d.uniform(0.012, 0.022)
-    if d.rng.random() < 0.5:
-        d.slab("plinth", (pw / 2, pw / 2, ph / 2), 0.0, plinth_mat, plinth)
-    else:
-        d.upright("plinth", pw / 2, ph, 0.0, plinth_mat, plinth)
-    return material, color, fill, plinth, pw, ph
-
-
-def _sculpture(d: Design, fifth: str) -> Traits:
-    """A small sculpture on a plinth: a figure, a cairn, a twisted stack, a ring, or the
-    ``fifth`` kind (an orb or a bust)."""
-    material, color, fill, plinth, pw, ph = _plinth(d)
-    look = (material, color)
-    kind = d.choice(["figure", "cairn", "twist", "ring", fifth])
-    if kind == "figure":
-        rz, rh = d.uniform(0.028, 0.038), d.uniform(0.009, 0.012)
-        d.ellipsoid("torso", (rz * 0.42, rz * 0.3, rz), (0, 0, ph + rz), *look, solid_fraction=fill)
-        d.upright("neck", rh * 0.45, rh * 0.6, ph + 2 * rz - 0.002, *look, solid_fraction=fill)
-        d.sphere("head", rh, (0, 0, ph + 2 * rz + rh * 0.5), *look, solid_fraction=fill)
-        shape = "irregular"
-    elif kind == "cairn":
-        z, r = ph, pw * d.uniform(0.42, 0.5)
-        for k in range(d.choice([3, 4, 5])):
-            rz = r * d.uniform(0.4, 0.5)
-            d.ellipsoid(
-                f"pebble_{k}", (r, r * 0.85, rz), (0, 0, z + rz), *look, solid_fraction=fill
-            )
-            z, r = z + 2 * rz * 0.92, r * d.uniform(0.72, 0.85)
-        shape = "irregular"
-    elif kind == "twist":
-        side, slices = pw * d.uniform(0.28, 0.36), d.choice([6, 7, 8, 9])
-        th, turn = d.uniform(0.008, 0.011), d.uniform(0.12, 0.2)
-        for k in range(slices):
-            half = (side * (1 - 0.04 * k), side * (1 - 0.04 * k), th / 2)
-            d.slab(f"slice_{k}", half, ph + k * th, *look, yaw=k * turn, solid_fraction=fill)
-        shape = "elongated"
-    elif kind == "ring":
-        rr, band, segs = d.uniform(0.024, 0.034), d.uniform(0.006, 0.009), 16
-        zc = ph + rr + band / 2
-        chord = 2 * (rr + band / 2) * math.tan(math.pi / segs) * 1.02
-        for k in range(segs):
-            a = 2 * math.pi * k / segs
-            pos = (rr * math.cos(a), 0, zc + rr * math.sin(a))
-            quat = axis_angle_quat((0, 1, 0), -a - math.pi / 2)
-            d.add(
-                f"ring_{k}",
-                "box",
-                (chord / 2, band * 0.7, band / 2),
-                pos,
-                *look,
-                quat=quat,
-                solid_fraction=fill,
-            )
-        shape = "ring"
-    elif kind == "orb":
-        r = d.uniform(0.02, 0.028)
-        d.upright("cup", r * 0.45, 0.004, ph, *look, solid_fraction=fill)
-        d.sphere("orb", r, (0, 0, ph + 0.002 + r), *look, solid_fraction=fill)
-        shape = "sphere"
-    else:  # a bust facing +x
-        k = d.uniform(0.9, 1.2)
-        d.ellipsoid(
-            "chest",
-            (0.011 * k, 0.028 * k, 0.015 * k),
-            (0, 0, ph + 0.014 * k),
-            *look,
-            solid_fraction=fill,
-        )
-        neck = ph + 0.025 * k
-        d.upright("neck", 0.0065 * k, 0.01 * k, neck, *look, solid_fraction=fill)
-        head = (0.0015 * k, 0, neck + 0.008 * k + 0.0145 * k)
-        d.ellipsoid("head", (0.012 * k, 0.0105 * k, 0.0145 * k), head, *look, solid_fraction=fill)
-        nose = (head[0] + 0.0115 * k, 0, head[2] - 0.001 * k)
-        d.ellipsoid("nose", (0.003 * k, 0.002 * k, 0.004 * k), nose, *look, solid_fraction=fill)
-        shape = "irregular"
-    return Traits((color, plinth), material, shape)
 
 
 def _sculpture_3(d: Design) -> Traits:
@@ -935,42 +718,12 @@ def _sculpture_3(d: Design) -> Traits:
     return Traits((color, plinth), material, "irregular")
 
 
-@generator("phone_stand", size=(0.07, 0.13), synonyms=("phone stand", "phone holder", "phone dock"))
-def phone_stand(d: Design) -> Traits:
-    material = d.choice(["aluminium", "plastic", "wood"])
-    color = d.choice(
-        {
-            "aluminium": ["silver", "gray", "black"],
-            "plastic": ["white", "black", "pink", "blue"],
-            "wood": ["brown", "beige"],
-        }[material]
-    )
-    t = {"aluminium": 0.004, "plastic": 0.005, "wood": 0.01}[material]
-    w, lx, base_t = d.uniform(0.05, 0.074), d.uniform(0.07, 0.1), t * 1.4
-    lean, back = d.uniform(0.3, 0.5), d.uniform(0.08, 0.11)
-    d.slab("base", (lx / 2, w / 2, base_t / 2), 0.0, material, color)
-    foot = lx / 2 - d.uniform(0.02, 0.028)
-    top = (foot - back * math.sin(lean), base_t + back * math.cos(lean))
-    beam(d, "backrest", (foot, base_t), top, w / 2, t / 2, material, color)
-    lip_x = foot + t / 2 + 0.011
-    d.slab("lip", (0.0025, w / 2, 0.005), base_t, material, color, xy=(lip_x, 0))
-    pad = d.choice(["black", "gray"])
-    d.slab(
-        "pad",
-        (0.0085, w * 0.4, 0.0004),
-        base_t,
-        "silicone",
-        pad,
-        xy=(lip_x - 0.0085 - 0.0025, 0),
-        visual_only=True,
-    )
-    if material != "wood":
-        mid = (foot - 0.55 * back * math.sin(lean) - t, base_t + 0.55 * back * math.cos(lean))
-        beam(d, "strut", (-lx / 2 + t, base_t), mid, w * 0.3, t / 2, material, color)
-    return Traits((color,), material, "L-shape")
-
-
-@revised("phone_stand", 3)
+@generator(
+    "phone_stand",
+    size=(0.07, 0.13),
+    synonyms=("phone stand", "phone holder", "phone dock"),
+    revision=3,
+)
 def phone_stand_3(d: Design) -> Traits:
     """Revision 3: an empty folding desk phone stand, seen from the front: a flat base plate,
     a support arm rising from a rear hinge to a second hinge, the phone-sized back plate
@@ -1058,41 +811,7 @@ def phone_stand_3(d: Design) -> Traits:
     return Traits((color,), material, "irregular")
 
 
-@generator("vase", size=(0.12, 0.27), synonyms=("vase", "flower vase"), container=True)
-def vase(d: Design) -> Traits:
-    material = d.choice(["ceramic", "ceramic", "glass"])
-    colors = ["white", "blue", "black", "green", "beige", "red", "pink"]
-    color = d.choice(colors if material == "ceramic" else ["transparent", "transparent", "blue"])
-    t, floor = (0.005 if material == "ceramic" else 0.004), 0.008
-    h = d.uniform(0.13, 0.25)
-    kind = d.choice(["cylinder", "flared", "square", "bottle"])
-    if kind == "square":
-        hx, hy = d.uniform(0.03, 0.045), d.uniform(0.03, 0.045)
-        d.open_box("vessel", (hx, hy), h, t, material, color, floor=floor, tags=(-1, 1))
-        d.interior(((hx - t) * 0.85, (hy - t) * 0.85), floor_z=floor, rim_z=h)
-        return Traits((color,), material, "cuboid")
-    r = d.uniform(0.03, 0.048) if kind != "flared" else d.uniform(0.025, 0.035)
-    d.upright("floor", r + t, floor, 0.0, material, color)
-    opening = r
-    if kind == "cylinder":
-        d.wall("wall", r, t, h - floor, floor, material, color, segments=20)
-    elif kind == "flared":
-        flare = math.atan2(d.uniform(0.045, 0.06) - r, h)
-        d.wall("wall", r, t, h - floor, floor, material, color, segments=20, flare=flare)
-    else:
-        body, opening = (h - floor) * d.uniform(0.55, 0.7), d.uniform(0.012, 0.02)
-        d.wall("body", r, t, body, floor, material, color, segments=20)
-        shoulder = (opening + r + t) / 2
-        d.flat_ring(
-            "shoulder", shoulder, r + t - opening, t, floor + body, material, color, segments=20
-        )
-        neck_z = floor + body + t
-        d.wall("neck", opening, t, h - neck_z, neck_z, material, color, segments=14)
-    d.interior((opening * 0.68, opening * 0.68), floor_z=floor, rim_z=h)
-    return Traits((color,), material, "cylinder" if kind != "flared" else "cone")
-
-
-@revised("vase", 3)
+@generator("vase", size=(0.12, 0.27), synonyms=("vase", "flower vase"), container=True, revision=3)
 def vase_3(d: Design) -> Traits:
     """Revision 3: a vase with a belly and a narrower neck under a flared lip, in glazed
     ceramic or glass, empty: a bud vase (a little round belly, a long slim neck), a

@@ -7,32 +7,11 @@ import math
 from ..design import Design, Traits
 from ..parts import X_TO_Z, axis_angle_quat, quat_mul
 from ..textures import Texture
-from .registry import generator, revised
+from .registry import generator
+from .reprints import reprint
 
 
-def _stem(d: Design, top: float, length: float, leaf: bool) -> None:
-    d.upright("stem", 0.0025, length, top - 0.004, "organic", "brown")
-    if leaf:
-        d.box(
-            "leaf",
-            (0.012, 0.006, 0.0012),
-            (0.01, 0.0, top + 0.002),
-            "organic",
-            "green",
-            yaw=d.uniform(0, math.pi),
-        )
-
-
-@generator("apple", size=(0.055, 0.09))
-def apple(d: Design) -> Traits:
-    color = d.choice(["red", "red", "green", "yellow"])
-    r = d.uniform(0.03, 0.037)
-    d.ellipsoid("body", (r, r, r * d.uniform(0.82, 0.92)), (0, 0, r), "organic", color)
-    _stem(d, r * 1.85, d.uniform(0.012, 0.02), leaf=d.rng.random() < 0.6)
-    return Traits((color,), "organic", "sphere")
-
-
-@revised("apple", 3)
+@generator("apple", size=(0.055, 0.09), revision=3)
 def apple_3(d: Design) -> Traits:
     """Revision 3: a smooth red or green apple, wider than tall: broad shoulders round a
     dimple at the top with the stalk sunk in it, tapering to a smaller dimpled base (the
@@ -78,17 +57,7 @@ def apple_3(d: Design) -> Traits:
     return Traits((color,), "organic", "sphere")
 
 
-@generator("lemon", size=(0.06, 0.1))
-def lemon(d: Design) -> Traits:
-    color = d.choice(["yellow", "yellow", "green"])
-    a, b = d.uniform(0.035, 0.045), d.uniform(0.026, 0.031)
-    d.ellipsoid("body", (a, b, b), (0, 0, b), "organic", color)
-    for sign, name in ((1, "tip"), (-1, "stalk_end")):
-        d.sphere(name, 0.006, (sign * (a - 0.002), 0, b), "organic", color)
-    return Traits((color,), "organic", "ellipsoid")
-
-
-@revised("lemon", 3)
+@generator("lemon", size=(0.06, 0.1), revision=3)
 def lemon_3(d: Design) -> Traits:
     """Revision 3: a bright yellow lemon lying on its side along y (seen side on from the
     front): an oval a little longer than wide that tapers at each end, to a pointed nipple
@@ -117,32 +86,6 @@ def lemon_3(d: Design) -> Traits:
         visual_only=True,
     )
     return Traits((color,), "organic", "ellipsoid")
-
-
-@generator("banana", size=(0.12, 0.22))
-def banana(d: Design) -> Traits:
-    color = d.choice(["yellow", "yellow", "green"])
-    radius = d.uniform(0.015, 0.019)
-    arc = d.uniform(0.09, 0.12)  # radius of the curve
-    segments = 5
-    sweep = d.uniform(0.9, 1.2)
-    seg_len = arc * sweep / segments
-    for k in range(segments):
-        a = -sweep / 2 + sweep * (k + 0.5) / segments
-        center = (arc * math.sin(a), arc * (1 - math.cos(a)), radius)
-        r = radius * (0.75 if k in (0, segments - 1) else 1.0)
-        d.add(
-            f"segment_{k}",
-            "capsule",
-            (r, seg_len / 2),
-            center,
-            "organic",
-            color,
-            quat=axis_angle_quat((0, 0, 1), a),
-        )
-    tip = (arc * math.sin(sweep / 2 + 0.05), arc * (1 - math.cos(sweep / 2 + 0.05)), radius)
-    d.sphere("tip", radius * 0.45, tip, "organic", "brown")
-    return Traits((color,), "organic", "elongated")
 
 
 #: A banana's half thickness (the apothem of its five-sided section) at the joints of its
@@ -213,7 +156,7 @@ def _loft(d: Design, name: str, joints, color: str, colors=None) -> None:
             )
 
 
-@revised("banana", 3)
+@generator("banana", size=(0.12, 0.22), revision=3)
 def banana_3(d: Design) -> Traits:
     """Revision 3: a banana lying on its side along y: a curved, angular fruit of five flat
     sides with ridges between them, thick in the middle and tapering to a dark blossom tip
@@ -288,26 +231,7 @@ def banana_3(d: Design) -> Traits:
     return Traits((color,) if ends == color else (color, ends), "organic", "elongated")
 
 
-@generator("tomato", size=(0.05, 0.09))
-def tomato(d: Design) -> Traits:
-    color = d.choice(["red", "red", "orange"])
-    r = d.uniform(0.028, 0.04)
-    h = r * d.uniform(0.7, 0.82)
-    d.ellipsoid("body", (r, r, h), (0, 0, h), "organic", color)
-    for k in range(5):
-        d.box(
-            f"sepal_{k}",
-            (0.011, 0.0025, 0.001),
-            (0, 0, 2 * h),
-            "organic",
-            "green",
-            yaw=k * math.pi / 5,
-        )
-    d.upright("stem", 0.002, 0.008, 2 * h, "organic", "green")
-    return Traits((color,), "organic", "sphere")
-
-
-@revised("tomato", 3)
+@generator("tomato", size=(0.05, 0.09), revision=3)
 def tomato_3(d: Design) -> Traits:
     """Revision 3: a ripe red tomato: smooth round lobes bulging round a flattened body
     (a dimple at the top), a green star-shaped calyx of pointed sepals lying over the
@@ -368,15 +292,7 @@ def tomato_3(d: Design) -> Traits:
     return Traits((color,), "organic", "sphere")
 
 
-@generator("egg", size=(0.045, 0.07))
-def egg(d: Design) -> Traits:
-    color = d.choice(["white", "beige", "brown"])
-    r = d.uniform(0.02, 0.023)
-    d.ellipsoid("shell", (r * 1.3, r, r), (0, 0, r), "organic", color)
-    return Traits((color,), "organic", "ellipsoid")
-
-
-@revised("egg", 3)
+@generator("egg", size=(0.045, 0.07), revision=3)
 def egg_3(d: Design) -> Traits:
     """Revision 3: a whole egg standing in a short, low egg cup, its narrow end up: blunt
     below, tapering to a rounded point, nearly all of it above the cup's flared rim (the
@@ -397,7 +313,10 @@ def egg_3(d: Design) -> Traits:
     return Traits((color, cup), "organic", "ellipsoid")
 
 
-@generator("canned_coke", size=(0.1, 0.14), synonyms=("can of coke", "soda can", "coke can"))
+@generator(
+    "canned_coke", size=(0.1, 0.14), synonyms=("can of coke", "soda can", "coke can"), revision=3
+)
+@reprint("cola")
 def canned_coke(d: Design) -> Traits:
     color = d.choice(["red", "red", "silver", "black", "blue"])
     r = d.uniform(0.031, 0.034)
@@ -411,33 +330,6 @@ def canned_coke(d: Design) -> Traits:
     return Traits(colors, "metal", "cylinder")
 
 
-@generator(
-    "beverage_bottle",
-    size=(0.14, 0.26),
-    synonyms=("drink bottle", "beverage bottle", "soft drink bottle"),
-)
-def beverage_bottle(d: Design) -> Traits:
-    color = d.choice(["transparent", "green", "blue", "transparent"])
-    cap = d.choice(["white", "blue", "red", "black"])
-    r = d.uniform(0.028, 0.034)
-    h = d.uniform(0.15, 0.2)
-    body_h = h * 0.62
-    d.upright("body", r, body_h, 0.0, "plastic", color, solid_fraction=0.95)
-    d.ellipsoid("shoulder", (r, r, h * 0.14), (0, 0, body_h), "plastic", color, solid_fraction=0.95)
-    d.upright(
-        "label",
-        r + 0.0012,
-        body_h * 0.4,
-        body_h * 0.3,
-        "paper",
-        d.choice(["red", "orange", "white", "green"]),
-    )
-    neck_z = body_h + h * 0.1
-    d.upright("neck", 0.012, h - neck_z - 0.014, neck_z, "plastic", color)
-    d.upright("cap", 0.015, 0.016, h - 0.016, "plastic", cap)
-    return Traits((color, cap), "plastic", "cylinder")
-
-
 #: Soft drinks: (liquid seen through the clear bottle, label, ink, word pattern, caps).
 SOFT_DRINKS = (
     ("brown", "red", "white", "wrap_cola", ("red", "red", "white", "black")),
@@ -448,7 +340,12 @@ SOFT_DRINKS = (
 )
 
 
-@revised("beverage_bottle", 3)
+@generator(
+    "beverage_bottle",
+    size=(0.14, 0.26),
+    synonyms=("drink bottle", "beverage bottle", "soft drink bottle"),
+    revision=3,
+)
 def beverage_bottle_3(d: Design) -> Traits:
     """Revision 3: a plastic soft-drink bottle: the drink filling it to the shoulder (cola
     brown, orange, lemon green), a wide wrap-round label printed COLA or SODA, ribs above

@@ -8,7 +8,8 @@ from ..design import Design, Traits
 from ..parts import IDENTITY as IDENTITY_Q
 from ..parts import X_TO_Z, axis_angle_quat, quat_mul
 from ..textures import Texture
-from .registry import generator, revised
+from .registry import generator
+from .reprints import reprint
 
 WRAPPERS = ["red", "blue", "green", "yellow", "orange", "purple", "pink", "black", "white"]
 PRINTS = ["white", "yellow", "red", "silver", "blue"]
@@ -113,68 +114,10 @@ def strawberry(d: Design) -> Traits:
     return Traits(("red",), "organic", "cone")
 
 
-@generator("peach", size=(0.055, 0.1))
-def peach(d: Design) -> Traits:
-    color = d.choice(["orange", "orange", "yellow", "pink"])
-    r = d.uniform(0.027, 0.034)
-    h = r * d.uniform(0.88, 0.97)
-    d.ellipsoid("body", (r, r * d.uniform(0.92, 1.0), h), (0, 0, h), "organic", color)
-    crease = "orange" if color == "yellow" else "red"
-    d.ellipsoid("crease", (0.002, r * 1.01, h), (0, 0, h), "organic", crease, visual_only=True)
-    _stalk(d, 2 * h, d.uniform(0.006, 0.01), 0.1)
-    if d.rng.random() < 0.5:
-        _leaf(d, (0.015, 0.0, 2 * h + 0.001), 0.035, d.uniform(0, math.pi))
-    return Traits((color,), "organic", "sphere")
-
-
 # ingredients -----------------------------------------------------------------------------
-@generator("potato", size=(0.06, 0.13))
-def potato(d: Design) -> Traits:
-    color = d.choice(["brown", "brown", "beige", "yellow", "red"])
-    a = d.uniform(0.032, 0.055)
-    b, c = min(a * d.uniform(0.62, 0.8), 0.034), a * d.uniform(0.5, 0.62)
-    d.ellipsoid("body", (a, b, c), (0, 0, c), "organic", color)
-    lumpy = d.rng.random() < 0.6
-    if lumpy:
-        side = d.choice([-1, 1])
-        lump = (a * 0.5, b * 0.85, c * 0.9)
-        d.ellipsoid("lump", lump, (side * a * 0.5, b * 0.12, lump[2]), "organic", color)
-    _dots(d, "eye", (0, 0, c), (a, b, c), 6, 0.0018, "black" if color == "brown" else "brown")
-    return Traits((color,), "organic", "irregular" if lumpy else "ellipsoid")
-
-
-@generator("garlic", size=(0.04, 0.09), synonyms=("garlic", "garlic bulb", "head of garlic"))
-def garlic(d: Design) -> Traits:
-    skin = d.choice(["white", "white", "beige"])
-    streak = d.choice([skin, skin, "purple"])
-    r = d.uniform(0.021, 0.03)
-    h = r * d.uniform(0.8, 0.9)
-    d.upright("root_plate", r * 0.35, 0.004, 0.0, "organic", "beige")
-    d.ellipsoid("bulb", (r * 0.9, r * 0.9, h), (0, 0, h + 0.002), "organic", skin)
-    count = int(d.rng.integers(6, 9))
-    for k in range(count):
-        a = 2 * math.pi * k / count
-        pos = (r * 0.55 * math.cos(a), r * 0.55 * math.sin(a), h * 0.95 + 0.002)
-        radii = (r * 0.45, r * 0.32, h * 0.93)
-        d.add(f"clove_{k}", "ellipsoid", radii, pos, "organic", skin, quat=_yaw(a))
-        if streak != skin:
-            radii = (r * 0.5, r * 0.07, h * 0.8)
-            d.add(
-                f"streak_{k}",
-                "ellipsoid",
-                radii,
-                pos,
-                "organic",
-                streak,
-                quat=_yaw(a),
-                visual_only=True,
-            )
-    d.ellipsoid("neck", (r * 0.22, r * 0.22, h * 0.55), (0, 0, 1.9 * h), "organic", skin)
-    d.upright("tip", r * 0.08, h * 0.35, 2.3 * h, "organic", skin)
-    return Traits(tuple(dict.fromkeys((skin, streak))), "organic", "sphere")
-
-
-@revised("garlic", 3)
+@generator(
+    "garlic", size=(0.04, 0.09), synonyms=("garlic", "garlic bulb", "head of garlic"), revision=3
+)
 def garlic_3(d: Design) -> Traits:
     """Revision 3: a papery white head of garlic shaped like a teardrop: plump cloves
     leaning in to a pointed top with a dry stem, purple streaks running up it, a fringe of
@@ -305,85 +248,12 @@ def chili(d: Design) -> Traits:
     return Traits(tuple(dict.fromkeys((color, "green"))), "organic", "elongated")
 
 
-@generator("bread", size=(0.07, 0.24))
-def bread(d: Design) -> Traits:
-    crust = d.choice(["brown", "golden", "golden", "beige"])
-    kind = d.choice(["loaf", "roll", "batard"])
-    if kind == "loaf":  # a sandwich loaf with a rounded top and one end cut
-        crumb = "beige" if crust != "beige" else "white"
-        lx, ly, hz = d.uniform(0.13, 0.19), d.uniform(0.058, 0.068), d.uniform(0.04, 0.06)
-        d.box(
-            "body", (lx / 2, ly / 2, hz / 2), (0, 0, hz / 2), "organic", crust, solid_fraction=0.3
-        )
-        d.rod("crown", ly / 2, lx, (0, 0, hz), "organic", crust, solid_fraction=0.3)
-        inset = (lx / 2 + 0.0008, 0, hz)
-        d.box(
-            "crumb",
-            (0.0008, ly / 2 - 0.004, hz / 2 - 0.002),
-            (inset[0], 0, hz / 2 + 0.002),
-            "organic",
-            crumb,
-            visual_only=True,
-        )
-        d.rod("crumb_top", ly / 2 - 0.004, 0.0016, inset, "organic", crumb, visual_only=True)
-        return Traits((crust, crumb), "organic", "cuboid")
-    if kind == "roll":
-        a = d.uniform(0.04, 0.055)
-        b, c = min(a * d.uniform(0.75, 0.95), 0.034), d.uniform(0.024, 0.032)
-    else:
-        a, b, c = d.uniform(0.08, 0.115), d.uniform(0.028, 0.034), d.uniform(0.028, 0.036)
-    d.ellipsoid("crust", (a, b, c), (0, 0, c), "organic", crust, solid_fraction=0.3)
-    slashes = 1 if kind == "roll" else int(d.rng.integers(3, 5))
-    score = "beige" if crust != "beige" else "white"
-    for k in range(slashes):
-        x = (k - (slashes - 1) / 2) * a * 1.5 / max(slashes, 2)
-        z = c + c * math.sqrt(max(1 - (x / a) ** 2, 0.0)) - 0.0012
-        radii = (min(a * 0.3, 0.025), 0.003, 0.0025)
-        quat = _yaw(0.5 if slashes > 1 else 0.0)
-        d.add(
-            f"score_{k}",
-            "ellipsoid",
-            radii,
-            (x, 0, z),
-            "organic",
-            score,
-            quat=quat,
-            visual_only=True,
-        )
-    return Traits((crust,), "organic", "ellipsoid" if kind == "roll" else "elongated")
-
-
 # beverages -------------------------------------------------------------------------------
 JUICE_FRUITS = ["orange", "yellow", "red", "purple", "green"]
 
 
-@generator("juice", size=(0.09, 0.18), synonyms=("juice", "fruit juice"))
-def juice(d: Design) -> Traits:
-    fruit = d.choice(JUICE_FRUITS)
-    if d.rng.random() < 0.5:
-        return _juice_box(d, fruit)
-    cap = d.choice(["white", "green", "orange", "blue", "black"])
-    r, hz = d.uniform(0.028, 0.035), d.uniform(0.11, 0.15)
-    body = hz * 0.7
-    d.upright("bottle", r, body, 0.0, "plastic", fruit, solid_fraction=0.95)
-    d.ellipsoid("shoulder", (r, r, hz * 0.12), (0, 0, body), "plastic", fruit, solid_fraction=0.95)
-    d.upright(
-        "label",
-        r + 0.0012,
-        body * 0.5,
-        body * 0.22,
-        "paper",
-        d.choice(PRINTS[:3]),
-        visual_only=True,
-        texture=Texture("sticker", (fruit, fruit), "fruit"),
-    )
-    neck_z = body + hz * 0.08
-    d.upright("neck", r * 0.6, hz - neck_z - 0.018, neck_z, "plastic", fruit)
-    d.upright("cap", r * 0.68, 0.018, hz - 0.018, "plastic", cap)
-    return Traits((fruit, cap), "plastic", "cylinder")
-
-
-@revised("juice", 2)
+@generator("juice", size=(0.09, 0.18), synonyms=("juice", "fruit juice"), revision=3)
+@reprint("juice")
 def juice_2(d: Design) -> Traits:
     """Revision 2: the bottle is a tall clear bottle showing the juice, with a slim neck,
     a small cap and the fruit label (the first, squat with a wide cap, read as a pill
@@ -438,7 +308,10 @@ def _juice_box(d: Design, fruit: str) -> Traits:
     return Traits((box, fruit) if box != fruit else (box,), "paper", "cuboid")
 
 
-@generator("milk_carton", size=(0.1, 0.26), synonyms=("milk carton", "carton of milk", "milk"))
+@generator(
+    "milk_carton", size=(0.1, 0.26), synonyms=("milk carton", "carton of milk", "milk"), revision=3
+)
+@reprint("milk")
 def milk_carton(d: Design) -> Traits:
     body = d.choice(["white", "white", "white", "yellow", "beige"])
     band = d.choice(["blue", "blue", "red", "green", "pink"])
@@ -462,61 +335,10 @@ def milk_carton(d: Design) -> Traits:
 
 
 # snacks ----------------------------------------------------------------------------------
-@generator("candy", size=(0.035, 0.08), synonyms=("candy", "sweet", "wrapped candy"))
-def candy(d: Design) -> Traits:
-    wrapper = d.choice(WRAPPERS[:-2] + ["golden", "silver"])
-    stripe = d.choice([c for c in PRINTS if c != wrapper])
-    a, b = d.uniform(0.012, 0.019), d.uniform(0.01, 0.013)
-    c = min(b, d.uniform(0.008, 0.011))
-    d.ellipsoid("sweet", (a, b, c), (0, 0, c), "organic", wrapper, solid_fraction=1.6)
-    d.ellipsoid(
-        "stripe", (a * 0.3, b * 1.03, c * 1.03), (0, 0, c), "plastic", stripe, visual_only=True
-    )
-    fan = d.uniform(0.007, 0.011)
-    for k, sign in enumerate((-1, 1)):  # the twisted ends of the wrapper
-        d.rod(f"twist_{k}", 0.0025, 0.007, (sign * (a + 0.002), 0, c), "plastic", wrapper)
-        d.ellipsoid(
-            f"fan_{k}",
-            (fan / 2, b * d.uniform(0.8, 1.0), 0.0015),
-            (sign * (a + 0.004 + fan / 2), 0, c),
-            "plastic",
-            wrapper,
-        )
-    return Traits((wrapper, stripe), "organic", "ellipsoid")
-
-
-@generator("chewing_gum", size=(0.06, 0.1), synonyms=("chewing gum", "gum", "pack of gum"))
-def chewing_gum(d: Design) -> Traits:
-    color, label = _gum_colors(d)
-    if d.rng.random() < 0.5:
-        lx, ly, hz = d.uniform(0.065, 0.078), d.uniform(0.019, 0.024), d.uniform(0.011, 0.015)
-        d.box(
-            "sleeve", (lx / 2, ly / 2, hz / 2), (0, 0, hz / 2), "paper", color, solid_fraction=0.8
-        )
-        out = d.uniform(0.008, 0.015)
-        d.box(
-            "sticks",
-            (out / 2, ly / 2 - 0.0015, hz / 2 - 0.0015),
-            (lx / 2 + out / 2, 0, hz / 2),
-            "paper",
-            "silver",
-        )
-    else:
-        lx, ly, hz = d.uniform(0.075, 0.095), d.uniform(0.035, 0.05), d.uniform(0.012, 0.018)
-        d.box("pack", (lx / 2, ly / 2, hz / 2), (0, 0, hz / 2), "paper", color, solid_fraction=0.7)
-        d.box(
-            "flip_lid",
-            (lx * 0.2, ly / 2 + 0.0006, 0.0008),
-            (lx * 0.3, 0, hz + 0.0008),
-            "paper",
-            label,
-            visual_only=True,
-        )
-    _gum_label(d, color, label, lx, ly, hz)
-    return Traits((color, label), "paper", "cuboid")
-
-
-@revised("chewing_gum", 2)
+@generator(
+    "chewing_gum", size=(0.06, 0.1), synonyms=("chewing gum", "gum", "pack of gum"), revision=3
+)
+@reprint("gum")
 def chewing_gum_2(d: Design) -> Traits:
     """Revision 2: every pack is a sleeve of sticks, opened at one end with three foil
     sticks pulled out to different lengths (the flat box of the first read as a mat)."""
@@ -554,46 +376,6 @@ def _gum_label(d: Design, color: str, label: str, lx: float, ly: float, hz: floa
         x=-lx * 0.1,
         texture=mint,
     )
-
-
-@generator("biscuit", size=(0.045, 0.21), synonyms=("biscuit", "cookie"))
-def biscuit(d: Design) -> Traits:
-    kind = d.choice(["plain", "sandwich", "pack"])
-    if kind == "pack":
-        wrapper = d.choice(WRAPPERS)
-        lx, ly, hz = d.uniform(0.12, 0.17), d.uniform(0.05, 0.068), d.uniform(0.03, 0.045)
-        d.box(
-            "pack", (lx / 2, ly / 2, hz / 2), (0, 0, hz / 2), "paper", wrapper, solid_fraction=0.6
-        )
-        _crimps(d, lx / 2, ly, hz / 2, wrapper, 0.01)
-        cookie = Texture("badge", ("white", "golden"), "cookie")
-        d.upright(
-            "picture", ly * 0.35, 0.0012, hz, "paper", "golden", visual_only=True, texture=cookie
-        )
-        return Traits((wrapper, "golden"), "paper", "cuboid")
-    r = d.uniform(0.024, 0.034)
-    if kind == "sandwich":
-        dark = d.choice(["black", "brown"])
-        cream = d.choice(["white", "white", "pink", "yellow"])
-        t = d.uniform(0.004, 0.005)
-        d.upright("lower", r, t, 0.0, "organic", dark, solid_fraction=0.6)
-        d.upright("cream", r * 0.92, 0.004, t, "organic", cream, solid_fraction=0.6)
-        d.upright("upper", r, t, t + 0.004, "organic", dark, solid_fraction=0.6)
-        return Traits((dark, cream), "organic", "disk")
-    color = d.choice(["golden", "beige", "brown"])
-    t = d.uniform(0.008, 0.011)
-    d.upright("cookie", r, t, 0.0, "organic", color, solid_fraction=0.5)
-    for k in range(int(d.rng.integers(5, 9))):
-        a, rho = d.uniform(0, 2 * math.pi), r * math.sqrt(d.uniform(0.0, 0.7))
-        d.sphere(
-            f"chip_{k}",
-            0.0025,
-            (rho * math.cos(a), rho * math.sin(a), t),
-            "organic",
-            "black" if color == "brown" else "brown",
-            visual_only=True,
-        )
-    return Traits((color,), "organic", "disk")
 
 
 def _chip_cookie(
@@ -637,7 +419,7 @@ def _chip_cookie(
     return top + dome
 
 
-@revised("biscuit", 3)
+@generator("biscuit", size=(0.045, 0.21), synonyms=("biscuit", "cookie"), revision=3)
 def biscuit_3(d: Design) -> Traits:
     """Revision 3: a biscuit people call a cookie at a glance: a round chocolate-chip
     cookie (a domed, cracked top studded with dark chips), a
@@ -704,7 +486,10 @@ def biscuit_3(d: Design) -> Traits:
     return Traits((color,), "organic", "disk")
 
 
-@generator("potato_chips", size=(0.15, 0.26), synonyms=("potato chips", "chips", "crisps"))
+@generator(
+    "potato_chips", size=(0.15, 0.26), synonyms=("potato chips", "chips", "crisps"), revision=3
+)
+@reprint("chips")
 def potato_chips(d: Design) -> Traits:
     color = d.choice(WRAPPERS[:-1])
     label = d.choice([c for c in ("yellow", "white", "red", "golden") if c != color])
@@ -765,7 +550,8 @@ def potato_chips(d: Design) -> Traits:
     return Traits((color, label), "paper", "cylinder")
 
 
-@generator("chocolate", size=(0.08, 0.17), synonyms=("chocolate", "chocolate bar"))
+@generator("chocolate", size=(0.08, 0.17), synonyms=("chocolate", "chocolate bar"), revision=3)
+@reprint("chocolate")
 def chocolate(d: Design) -> Traits:
     wrapper = d.choice(WRAPPERS[:-2] + ["golden"])
     if d.rng.random() < 0.5:  # a tablet, half unwrapped
@@ -811,40 +597,11 @@ def chocolate(d: Design) -> Traits:
 
 
 @generator(
-    "cheese_sticks", size=(0.08, 0.15), synonyms=("cheese sticks", "string cheese", "cheese stick")
+    "cheese_sticks",
+    size=(0.08, 0.15),
+    synonyms=("cheese sticks", "string cheese", "cheese stick"),
+    revision=3,
 )
-def cheese_sticks(d: Design) -> Traits:
-    cheese = d.choice(["white", "white", "yellow", "orange"])
-    wrap = d.choice(["red", "blue", "green", "yellow", "purple"])
-    r, length = d.uniform(0.0085, 0.011), d.uniform(0.085, 0.11)
-    count = d.choice([1, 1, 2, 3])
-    for k in range(count):
-        y = (k - (count - 1) / 2) * 2 * r
-        d.rod(f"stick_{k}", r, length, (0, y, r), "organic", cheese, capsule=True)
-        d.rod(
-            f"print_{k}",
-            r + 0.0006,
-            length * 0.45,
-            (0, y, r),
-            "plastic",
-            wrap,
-            visual_only=True,
-            texture=Texture("sticker", ("white", "yellow"), "cheese"),
-        )
-    _crimps(d, length / 2 - 0.002, 2 * r * count, r, "transparent", 0.01)
-    if count > 1:
-        d.box(
-            "sleeve",
-            (0.012, count * r + 0.001, r + 0.001),
-            (length * 0.3, 0, r),
-            "paper",
-            "white",
-            solid_fraction=0.1,
-        )
-    return Traits((cheese, wrap), "organic", "elongated")
-
-
-@revised("cheese_sticks", 3)
 def cheese_sticks_3(d: Design) -> Traits:
     """Revision 3: string cheese: two sticks still in their clear wrappers (sealed flat at
     both ends), held by a coloured paper band printed STRING CHEESE, lying behind a pale stick
@@ -940,7 +697,7 @@ def cheese_sticks_3(d: Design) -> Traits:
     return Traits((cheese, wrap), "organic", "elongated")
 
 
-@revised("bread", 3)
+@generator("bread", size=(0.07, 0.24), revision=3)
 def bread_3(d: Design) -> Traits:
     """Revision 3: a golden-brown sandwich loaf, its domed top overhanging the tin-baked
     sides, cut at the front to show a porous crumb, two slices cut off standing a little
@@ -1017,7 +774,7 @@ def bread_3(d: Design) -> Traits:
     return Traits((top,), "organic", "elongated")
 
 
-@revised("potato", 3)
+@generator("potato", size=(0.06, 0.13), revision=3)
 def potato_3(d: Design) -> Traits:
     """Revision 3: an oblong, knobbly tuber, flattened and lumpy, with sunken eyes and
     earthy specks, in earthy skins (a round red one read as an apple or a tomato; a
@@ -1036,7 +793,7 @@ def potato_3(d: Design) -> Traits:
     return Traits((color,), "organic", "irregular")
 
 
-@revised("peach", 3)
+@generator("peach", size=(0.055, 0.1), revision=3)
 def peach_3(d: Design) -> Traits:
     """Revision 3: a cleft, heart-shaped peach with a red blush over its yellow-orange skin,
     a deep dark crease from the stalk and a slender leaf (a plain orange ball read as an
@@ -1072,7 +829,7 @@ def peach_3(d: Design) -> Traits:
     return Traits((skin, blush), "organic", "sphere")
 
 
-@revised("candy", 3)
+@generator("candy", size=(0.035, 0.08), synonyms=("candy", "sweet", "wrapped candy"), revision=3)
 def candy_3(d: Design) -> Traits:
     """Revision 3: a sweet in a shiny twist wrapper whose pleated ends fan out upright like
     a bow tie, or a red-and-white peppermint swirl in a clear twist wrapper (the first, its

@@ -5,21 +5,12 @@ from __future__ import annotations
 from ..design import Design, Traits
 from ..textures import Texture
 from .desktop import BRIGHT
-from .registry import generator, revised
+from .registry import generator
 
 
-@generator("sponge", size=(0.07, 0.12), synonyms=("sponge", "kitchen sponge", "scrub sponge"))
-def sponge(d: Design) -> Traits:
-    color = d.choice(["yellow", "yellow", "pink", "blue", "orange"])
-    pad = d.choice(["green", "green", "blue", "gray"])
-    lx, ly = d.uniform(0.08, 0.1), d.uniform(0.05, 0.065)
-    foam, scour = d.uniform(0.02, 0.03), 0.006
-    d.box("foam", (lx / 2, ly / 2, foam / 2), (0, 0, foam / 2), "foam", color)
-    d.box("scourer", (lx / 2, ly / 2, scour / 2), (0, 0, foam + scour / 2), "fabric", pad)
-    return Traits((color, pad), "fabric", "cuboid")
-
-
-@revised("sponge", 3)
+@generator(
+    "sponge", size=(0.07, 0.12), synonyms=("sponge", "kitchen sponge", "scrub sponge"), revision=3
+)
 def sponge_3(d: Design) -> Traits:
     """Revision 3: a thick block of foam showing its pores all round, under a thin scouring
     pad of the same outline (the first, two plain slabs, was not named)."""

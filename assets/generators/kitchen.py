@@ -7,7 +7,7 @@ import math
 from ..design import Design, Traits
 from ..parts import X_TO_Z
 from ..textures import Texture
-from .registry import generator, revised
+from .registry import generator
 
 CERAMIC_COLORS = ["white", "white", "blue", "red", "green", "yellow", "black", "beige", "pink"]
 
@@ -46,18 +46,6 @@ def bowl(d: Design) -> Traits:
     return Traits((color,), material, "hemisphere")
 
 
-@generator("spice_jar", size=(0.07, 0.12), synonyms=("spice jar", "seasoning jar"))
-def spice_jar(d: Design) -> Traits:
-    lid = d.choice(["red", "black", "silver", "white", "green"])
-    content = d.choice(["red", "brown", "green", "orange", "beige"])
-    r = d.uniform(0.02, 0.026)
-    h = d.uniform(0.08, 0.1)
-    d.upright("jar", r, h - 0.018, 0.0, "glass", "transparent", solid_fraction=0.35)
-    d.upright("spice", r - 0.002, (h - 0.02) * 0.6, 0.002, "organic", content, visual_only=True)
-    d.upright("lid", r + 0.0015, 0.018, h - 0.018, "plastic", lid)
-    return Traits(("transparent", lid), "glass", "cylinder")
-
-
 #: The spice a jar's contents show, by their colour: the word its label prints.
 SPICE_WORDS = {
     "red": ("wrap_paprika",),
@@ -68,7 +56,7 @@ SPICE_WORDS = {
 }
 
 
-@revised("spice_jar", 3)
+@generator("spice_jar", size=(0.07, 0.12), synonyms=("spice jar", "seasoning jar"), revision=3)
 def spice_jar_3(d: Design) -> Traits:
     """Revision 3: a small glass jar filled to the shoulder with ground spice, a printed
     label round it naming the spice (PAPRIKA, CINNAMON, OREGANO ...), under a screw lid

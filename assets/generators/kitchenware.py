@@ -6,9 +6,8 @@ import math
 
 from ..design import Design, Traits
 from ..parts import axis_angle_quat
-from ..textures import Texture
 from .kitchen import CERAMIC_COLORS
-from .registry import generator, revised
+from .registry import generator
 
 GRIPS = ["black", "red", "green", "blue", "yellow", "orange", "white", "brown"]
 
@@ -50,51 +49,12 @@ def fruit_knife(d: Design) -> Traits:
     return Traits((color, "silver"), material, "elongated")
 
 
-@generator("peeler", size=(0.13, 0.21), synonyms=("peeler", "vegetable peeler", "potato peeler"))
-def peeler(d: Design) -> Traits:
-    handle, thick = d.uniform(0.09, 0.12), d.uniform(0.012, 0.016)
-    material, color = _grip(d, handle, d.uniform(0.009, 0.012), thick, 0.0)
-    d.upright(
-        "hang_hole",
-        0.004,
-        0.0006,
-        thick,
-        "plastic",
-        "black",
-        xy=(-handle + 0.012, 0),
-        visual_only=True,
-    )
-    if d.rng.random() < 0.5:  # a Y peeler: two arms and a blade across their tips
-        reach, half = d.uniform(0.035, 0.045), d.uniform(0.025, 0.032)
-        for k, sign in enumerate((-1, 1)):
-            d.segment(
-                f"arm_{k}",
-                "box",
-                (0, 0, thick / 2),
-                (reach, sign * half, thick / 2),
-                (0.0035, thick / 2),
-                material,
-                color,
-            )
-        d.box("blade", (0.006, half, 0.0012), (reach, 0, 0.0012), "metal", "silver")
-        return Traits((color, "silver"), material, "T-shape")
-    frame, half = d.uniform(0.05, 0.065), d.uniform(0.009, 0.012)
-    for k, sign in enumerate((-1, 1)):
-        d.box(
-            f"rail_{k}",
-            (frame / 2, 0.0025, thick / 3),
-            (frame / 2, sign * half, thick / 3),
-            "metal",
-            "silver",
-        )
-    d.box("end_cap", (0.003, half + 0.0025, thick / 3), (frame, 0, thick / 3), "metal", "silver")
-    d.box(
-        "blade", (frame / 2 - 0.004, half - 0.0045, 0.001), (frame / 2, 0, 0.001), "metal", "silver"
-    )
-    return Traits((color, "silver"), material, "elongated")
-
-
-@revised("peeler", 3)
+@generator(
+    "peeler",
+    size=(0.13, 0.21),
+    synonyms=("peeler", "vegetable peeler", "potato peeler"),
+    revision=3,
+)
 def peeler_3(d: Design) -> Traits:
     """Revision 3: lying flat, a Y peeler: a chunky handle, a stem spreading into a yoke
     wider than the handle, and a wide slotted blade across the yoke's tips, its two cutting
@@ -208,35 +168,11 @@ def garlic_press(d: Design) -> Traits:
 
 
 @generator(
-    "wire_cutters", size=(0.11, 0.2), synonyms=("wire cutters", "side cutters", "wire snips")
+    "wire_cutters",
+    size=(0.11, 0.2),
+    synonyms=("wire cutters", "side cutters", "wire snips"),
+    revision=3,
 )
-def wire_cutters(d: Design) -> Traits:
-    grip = d.choice(["red", "red", "yellow", "blue", "black", "orange"])
-    length, spread = d.uniform(0.12, 0.16), d.uniform(0.035, 0.055)
-    jaw, thick = d.uniform(0.025, 0.032), d.uniform(0.011, 0.014)
-    z = thick / 2
-    pivot = length / 2 - jaw
-    for k, sign in enumerate((-1, 1)):
-        end = (-length / 2, sign * spread / 2, z)
-        d.segment(
-            f"arm_{k}", "box", (pivot, 0, z), end, (0.0045, thick / 2 - 0.002), "metal", "silver"
-        )
-        start = (pivot - 0.02, sign * 0.006, z)
-        d.segment(f"grip_{k}", "capsule", start, end, thick / 2, "rubber", grip)
-        d.segment(
-            f"jaw_{k}",
-            "box",
-            (pivot, sign * 0.006, z),
-            (length / 2, 0, z),
-            (0.005, thick / 2 - 0.002),
-            "metal",
-            "silver",
-        )
-    d.upright("pivot", 0.0065, thick, 0.0, "metal", "silver", xy=(pivot, 0))
-    return Traits((grip, "silver"), "metal", "irregular")
-
-
-@revised("wire_cutters", 3)
 def wire_cutters_3(d: Design) -> Traits:
     """Revision 3: diagonal side cutters lying across the view, cutting a wire: a short,
     black, pointed head of two almond jaws opened a little about a round boss with a
@@ -355,69 +291,9 @@ def chopsticks(d: Design) -> Traits:
     return Traits((color,), material, "elongated")
 
 
-@generator("coaster", size=(0.08, 0.12), synonyms=("coaster", "drink coaster"), graspable=False)
-def coaster(d: Design) -> Traits:
-    material, color = d.choice(
-        [
-            ("wood", "beige"),
-            ("wood", "brown"),
-            ("ceramic", "white"),
-            ("stone", "black"),
-            ("stone", "gray"),
-            ("silicone", "blue"),
-            ("silicone", "green"),
-        ]
-    )
-    pattern = d.choice(
-        [c for c in ("red", "blue", "white", "black", "green", "golden") if c != color]
-    )
-    size, thick = d.uniform(0.04, 0.05), d.uniform(0.006, 0.009)
-    kw = dict(solid_fraction=0.5 if material == "stone" else 1.0)
-    if d.rng.random() < 0.5:
-        d.upright("disk", size, thick, 0.0, material, color, **kw)
-        d.wall("ring", size * 0.72, 0.003, 0.0004, thick, "paper", pattern, segments=20)
-        shape = "disk"
-    else:
-        d.box("slab", (size, size, thick / 2), (0, 0, thick / 2), material, color, **kw)
-        d.box(
-            "print",
-            (size * 0.7, size * 0.7, 0.0002),
-            (0, 0, thick + 0.0002),
-            "paper",
-            pattern,
-            yaw=math.pi / 4,
-            visual_only=True,
-        )
-        shape = "flat"
-    return Traits((color, pattern), material, shape)
-
-
-CORK = Texture("pores")
-
-
-def _cork_stain(d: Design, radius: float, z: float, center: tuple[float, float]) -> None:
-    """The ring a wet glass left on cork: a darker, uneven, broken circle printed at ``z``."""
-    pieces = 18
-    chord = 2 * radius * math.tan(math.pi / pieces) * 1.05
-    gap = int(d.rng.integers(pieces))
-    for k in range(pieces):
-        if k == gap:  # where the ring dried out
-            continue
-        a = 2 * math.pi * k / pieces
-        pos = (center[0] + radius * math.cos(a), center[1] + radius * math.sin(a), z + 0.00015)
-        width = d.uniform(0.0022, 0.0042)
-        d.box(
-            f"stain_{k}",
-            (width / 2, chord / 2, 0.00015),
-            pos,
-            "paper",
-            "brown",
-            yaw=a,
-            visual_only=True,
-        )
-
-
-@revised("coaster", 3)
+@generator(
+    "coaster", size=(0.08, 0.12), synonyms=("coaster", "drink coaster"), graspable=False, revision=3
+)
 def coaster_3(d: Design) -> Traits:
     """Revision 3: a set of square or round coasters (slate, ceramic, bamboo or felt, each
     printed with a geometric tile in a contrasting ink): standing on edge in a rack between
@@ -700,32 +576,9 @@ def coffee_cup(d: Design) -> Traits:
     return Traits(colors, "ceramic", "cylinder")
 
 
-@generator("thermos", size=(0.18, 0.33), synonyms=("thermos", "vacuum flask", "thermos flask"))
-def thermos(d: Design) -> Traits:
-    color = d.choice(["silver", "silver", "black", "blue", "red", "green", "white", "pink"])
-    cap = d.choice(["black", "silver", color])
-    r, h = d.uniform(0.03, 0.035), d.uniform(0.19, 0.3)
-    cap_h = h * d.uniform(0.18, 0.24)
-    body = h - cap_h - 0.012
-    d.upright("base_ring", r - 0.001, 0.01, 0.0, "rubber", "black")
-    d.upright("body", r, body, 0.01, "metal", color, solid_fraction=0.05)
-    d.upright("band", r + 0.0006, 0.01, 0.01 + body * 0.8, "metal", "silver", visual_only=True)
-    d.upright("neck", r * 0.8, 0.004, 0.01 + body, "metal", "silver")
-    d.upright("cap", r + 0.001, cap_h, 0.014 + body, "plastic", cap, solid_fraction=0.2)
-    d.upright(
-        "cap_grip",
-        r + 0.0016,
-        cap_h * 0.3,
-        0.014 + body + cap_h * 0.6,
-        "rubber",
-        cap,
-        visual_only=True,
-    )
-    colors = (color,) if cap == color else (color, cap)
-    return Traits(colors, "metal", "cylinder")
-
-
-@revised("thermos", 3)
+@generator(
+    "thermos", size=(0.18, 0.33), synonyms=("thermos", "vacuum flask", "thermos flask"), revision=3
+)
 def thermos_3(d: Design) -> Traits:
     """Revision 3: a vacuum flask: a steel or coloured body on a black rubber foot, its
     shoulder narrowing to a neck, a carry handle on two lugs up its side, and on top either

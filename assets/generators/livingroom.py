@@ -6,7 +6,7 @@ import math
 
 from ..design import Design, Traits
 from ..parts import X_TO_Z, axis_angle_quat
-from .registry import generator, revised
+from .registry import generator
 
 
 def _cactus(d: Design, z: float) -> None:
@@ -250,57 +250,8 @@ def photo_frame(d: Design) -> Traits:
     size=(0.06, 0.15),
     synonyms=("candle holder", "votive holder", "tealight holder"),
     container=True,
+    revision=3,
 )
-def candle_holder(d: Design) -> Traits:
-    material, color = d.choice(
-        [
-            ("glass", "transparent"),
-            ("glass", "transparent"),
-            ("glass", "red"),
-            ("glass", "blue"),
-            ("glass", "purple"),
-            ("metal", "golden"),
-            ("metal", "silver"),
-            ("ceramic", "white"),
-        ]
-    )
-    kw = dict(solid_fraction=0.15) if material == "metal" else {}
-    r = d.uniform(0.036, 0.044)
-    h = d.uniform(0.06, 0.085) if material == "glass" else d.uniform(0.058, 0.068)
-    z = 0.0
-    if d.rng.random() < 0.4:
-        stem = d.uniform(0.02, 0.04)
-        d.upright("foot", r * 0.9, 0.005, 0.0, material, color, **kw)
-        d.upright("stem", 0.007, stem, 0.005, material, color, **kw)
-        z = 0.005 + stem
-    base = d.uniform(0.008, 0.012)
-    d.upright("base", r + 0.003, base, z, material, color, **kw)
-    glass = material == "glass"
-    flare = d.uniform(0.0, 0.12) if glass else 0.0
-    d.wall("wall", r, 0.004, h - base, z + base, material, color, segments=16, flare=flare)
-    for k in range(0 if glass else 16):  # the pierced holes of a metal or ceramic lantern
-        row, col = divmod(k, 8)
-        a, zk = (col + 0.5 * row) * math.pi / 4, z + base + (h - base) * (0.35 + 0.3 * row)
-        out = (math.cos(a), math.sin(a))
-        d.segment(
-            f"hole_{k}",
-            "cylinder",
-            (out[0] * (r - 0.001), out[1] * (r - 0.001), zk),
-            (out[0] * (r + 0.0045), out[1] * (r + 0.0045), zk),
-            0.004,
-            material,
-            "black",
-            visual_only=True,
-        )
-    floor = z + base
-    d.upright("tealight", 0.019, 0.015, floor, "metal", "silver", solid_fraction=0.15)
-    d.upright("wax", 0.0175, 0.001, floor + 0.015, "organic", "white")
-    d.upright("wick", 0.0008, 0.004, floor + 0.016, "fabric", "black", visual_only=True)
-    d.interior((r * 0.5, r * 0.5), floor_z=floor + 0.016, rim_z=z + h)
-    return Traits((color,), material, "cylinder")
-
-
-@revised("candle_holder", 3)
 def candle_holder_3(d: Design) -> Traits:
     """Revision 3: the holder, not the candle: a brass or silver candlestick (a wide drip
     tray for a foot, a turned stem with knops, a drip pan and a socket) or an enamel

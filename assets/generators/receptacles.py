@@ -7,9 +7,7 @@ import math
 from ..design import Design, Traits
 from ..parts import axis_angle_quat, quat_mul
 from ..textures import Texture
-from .registry import generator, revised
-
-PLASTICS = ["red", "blue", "green", "yellow", "white", "gray", "black", "pink", "orange"]
+from .registry import generator
 
 
 def _tray(
@@ -72,75 +70,6 @@ def _round_interior(d: Design, r: float, floor_z: float, rim_z: float) -> None:
     d.interior((r * 0.7, r * 0.7), floor_z=floor_z, rim_z=rim_z)
 
 
-def _ear_handles(
-    d: Design,
-    x: float,
-    z: float,
-    span: float,
-    lift: float,
-    material: str,
-    color: str,
-    radius: float = 0.005,
-) -> None:
-    """A loop handle at each end of the x axis: two posts and a bar above ``z``."""
-    for k, sign in enumerate((-1, 1)):
-        for j, y in enumerate((-span / 2, span / 2)):
-            d.upright(
-                f"post_{k}{j}", radius, lift + 0.015, z - 0.015, material, color, xy=(sign * x, y)
-            )
-        d.rod(
-            f"bar_{k}",
-            radius,
-            span + 2 * radius,
-            (sign * x, 0, z + lift),
-            material,
-            color,
-            axis="y",
-        )
-
-
-@generator("basket", size=(0.18, 0.33), graspable=False, container=True)
-def basket(d: Design) -> Traits:
-    material = d.choice(["wicker", "wicker", "wicker", "plastic"])
-    if material == "wicker":
-        color = d.choice(["brown", "beige", "golden"])
-        weave = "beige" if color == "brown" else "brown"
-        t = 0.007
-    else:
-        color = d.choice(["blue", "green", "red", "white", "pink"])
-        weave = "white" if color != "white" else "gray"
-        t = 0.004
-    h = d.uniform(0.07, 0.12)
-    if d.rng.random() < 0.6:
-        hx, hy = d.uniform(0.1, 0.135), d.uniform(0.07, 0.1)
-        _tray(d, hx, hy, h, t, material, color)
-        for k in range(int(h / 0.03)):
-            d.frame(
-                f"weave_{k}",
-                (hx + 0.001, hy + 0.001),
-                t + 0.002,
-                0.02 + k * 0.03,
-                0.008,
-                material,
-                weave,
-                visual_only=True,
-            )
-        d.frame("rim", (hx + 0.002, hy + 0.002), t + 0.004, h - 0.008, 0.01, material, weave)
-        d.interior((hx - t - 0.004, hy - t - 0.004), floor_z=t, rim_z=h)
-        x_handle, shape = hx, "cuboid"
-    else:
-        r = d.uniform(0.075, 0.1)
-        flare = d.uniform(0.12, 0.25)
-        top = _vessel(d, r, h, t, t, material, color, flare=flare, segments=18)
-        _rim_ring(d, top + 0.001, t, 0.01, h + 0.002, material, weave, 18)
-        _round_interior(d, r, t, h)
-        x_handle, shape = top, "cylinder"
-    _ear_handles(
-        d, x_handle + 0.004, h, d.uniform(0.05, 0.07), d.uniform(0.02, 0.035), material, weave
-    )
-    return Traits((color, weave), material, shape)
-
-
 def _loop_handle(
     d: Design, name: str, x: float, z: float, span: float, material: str, color: str
 ) -> None:
@@ -189,7 +118,7 @@ def _woven_wall(
         )
 
 
-@revised("basket", 3)
+@generator("basket", size=(0.18, 0.33), graspable=False, container=True, revision=3)
 def basket_3(d: Design) -> Traits:
     """Revision 3: a woven basket, round or rectangular (wicker, or rattan-look plastic):
     woven walls (the weave printed on them) over a darker base, a twisted rope rim and a
@@ -260,32 +189,6 @@ def basket_3(d: Design) -> Traits:
     return Traits((color, stake), material, shape)
 
 
-@generator(
-    "waste_bin",
-    size=(0.2, 0.32),
-    synonyms=("waste bin", "trash can", "garbage bin", "dustbin"),
-    graspable=False,
-    container=True,
-)
-def waste_bin(d: Design) -> Traits:
-    material, color = _metal_or_plastic(d, ["gray", "black", "white", "blue", "green"])
-    rim = d.choice([color, "black"])  # a bin liner folded over the rim, or a plain rim
-    h, t = d.uniform(0.2, 0.29), 0.0015 if material == "aluminium" else 0.003
-    if d.rng.random() < 0.6:
-        r = d.uniform(0.085, 0.105)
-        top = _vessel(d, r, h, t, 0.004, material, color, flare=d.uniform(0.03, 0.08), segments=20)
-        _rim_ring(d, top, t, 0.02, h + 0.002, material, rim, 20)
-        _round_interior(d, r, 0.004, h)
-        shape = "cylinder"
-    else:
-        hx, hy = d.uniform(0.09, 0.11), d.uniform(0.075, 0.1)
-        _tray(d, hx, hy, h, t, material, color)
-        d.frame("rim", (hx + 0.002, hy + 0.002), t + 0.004, h - 0.018, 0.02, material, rim)
-        d.interior((hx - 0.01, hy - 0.01), floor_z=t, rim_z=h)
-        shape = "cuboid"
-    return Traits(tuple(dict.fromkeys((color, rim))), material, shape)
-
-
 def _open_lid_frame(hinge, lean: float, up: float, depth: float):
     """Centre and axes of a lid hinged along y at ``hinge`` and swung open over the back
     (-x) to lean ``lean`` rad past upright: its centre ``up`` along the lid from the hinge
@@ -296,7 +199,14 @@ def _open_lid_frame(hinge, lean: float, up: float, depth: float):
     return c, n
 
 
-@revised("waste_bin", 3)
+@generator(
+    "waste_bin",
+    size=(0.2, 0.32),
+    synonyms=("waste bin", "trash can", "garbage bin", "dustbin"),
+    graspable=False,
+    container=True,
+    revision=3,
+)
 def waste_bin_3(d: Design) -> Traits:
     """Revision 3: a pedal bin, its lid standing open on a hinge at the back, a foot pedal at
     the front and a bin bag lining it, turned over the rim with its slack bunching below
@@ -598,41 +508,8 @@ def cutting_board(d: Design) -> Traits:
     size=(0.16, 0.26),
     synonyms=("lunch box", "lunchbox", "bento box"),
     container=True,
+    revision=3,
 )
-def lunch_box(d: Design) -> Traits:
-    color = d.choice(PLASTICS)
-    lid = d.choice([color, "white", "transparent", "blue"])
-    hx, hy, h, t = d.uniform(0.08, 0.1), d.uniform(0.055, 0.07), d.uniform(0.045, 0.065), 0.003
-    _tray(d, hx, hy, h, t, "plastic", color)
-    divider = hx * d.uniform(0.15, 0.35)
-    d.box(
-        "divider",
-        (t / 2, hy - t, (h - t) / 2 - 0.004),
-        (divider, 0, (h + t) / 2 - 0.004),
-        "plastic",
-        color,
-    )
-    lean = d.uniform(0.12, 0.3)  # the hinged lid stands open behind the box
-    quat = axis_angle_quat((1, 0, 0), lean)
-    pos = (0, -hy - 0.002 - math.sin(lean) * hy, h + math.cos(lean) * hy)
-    d.add("lid", "box", (hx, 0.002, hy), pos, "plastic", lid, quat=quat)
-    for k, sign in enumerate((-1, 1)):
-        d.box(
-            f"latch_{k}",
-            (0.012, 0.002, 0.008),
-            (sign * hx * 0.5, hy + 0.002, h - 0.012),
-            "plastic",
-            lid,
-        )
-    floor_x0 = -hx + t
-    half_x = (divider - t / 2 - floor_x0) / 2 - 0.003
-    d.interior(
-        (half_x, hy - t - 0.003), floor_z=t, rim_z=h, center=(floor_x0 + 0.003 + half_x, 0.0)
-    )
-    return Traits(tuple(dict.fromkeys((color, lid))), "plastic", "cuboid")
-
-
-@revised("lunch_box", 3)
 def lunch_box_3(d: Design) -> Traits:
     """Revision 3: a bento lunch box packed with lunch: white rice filling the back half
     (a red pickled plum and a strip of seaweed or black sesame on it), broccoli, rolled
@@ -861,35 +738,8 @@ def colander(d: Design) -> Traits:
     synonyms=("placemat", "place mat", "table mat"),
     graspable=False,
     container=True,
+    revision=3,
 )
-def placemat(d: Design) -> Traits:
-    material = d.choice(["fabric", "fabric", "plastic", "wicker", "wood"])
-    if material in ("wicker", "wood"):
-        color = d.choice(["beige", "golden", "brown"])
-    else:
-        color = d.choice(["red", "blue", "green", "white", "gray", "beige", "pink", "orange"])
-    hem = d.choice([color, "white", "black", "brown"])
-    round_ = d.rng.random() < 0.3
-    hx = d.uniform(0.115, 0.15) if round_ else d.uniform(0.13, 0.16)
-    hy = hx if round_ else d.uniform(0.095, 0.12)
-    _lipped_slab(d, hx, hy, 0.003, material, color, hem, round_)
-    if not round_:  # woven stripes or slats across the mat
-        stripe = "brown" if material in ("wicker", "wood") else hem
-        step = d.uniform(0.02, 0.04)
-        for k in range(int((2 * hx - 0.03) / step)):
-            x = -hx + 0.02 + k * step
-            d.box(
-                f"stripe_{k}",
-                (0.0015, hy - 0.01, 0.0003),
-                (x, 0, 0.003),
-                material,
-                stripe,
-                visual_only=True,
-            )
-    return Traits(tuple(dict.fromkeys((color, hem))), material, "disk" if round_ else "flat")
-
-
-@revised("placemat", 3)
 def placemat_3(d: Design) -> Traits:
     """Revision 3: a table placemat printed with a place setting: a thin wipe-clean vinyl
     (or woven cotton) rectangle with rounded corners, long across the diner's view, printed

@@ -1,9 +1,13 @@
 """Registry of category generators, and their revisions.
 
-A category's generator can be revised (a better shape, a part it lacked). The library moves
-in numbered revisions: revision 1 is every category as first built, and a later build is
-registered with the library revision it came in. A snapshot records the library revision it
-was frozen at, so it keeps regenerating its instances exactly, whatever came after.
+Every category has one build, registered by ``generator`` with the library revision it came
+in (``revision``, 1 unless the category was rebuilt before the 1.0 release). The revision is
+part of each instance's identity (``catalog.instance_uuid``). A later library revision
+rebuilds a category with ``revised``, on top of its newest build. A snapshot records the
+library revision it was frozen at, and ``generator_at`` builds each category with its newest
+build at or before it, so a snapshot keeps regenerating its instances exactly. The builds
+only snapshots before revision 3 used left the package at 1.0 (git tag v0.1.0): at an older
+library revision, a category whose build came later has none.
 """
 
 from __future__ import annotations
@@ -44,19 +48,23 @@ def generator(
     synonyms: tuple[str, ...] = (),
     graspable: bool = True,
     container: bool = False,
+    revision: int = 1,
 ):
-    """Register ``build`` as the generator of ``category`` (library revision 1).
+    """Register ``build`` as the generator of ``category``: its first build, which came in
+    library ``revision``.
 
     ``size`` is the category prior on the largest dimension (checked on every instance);
     ``synonyms`` are the nouns people use, most common first (default: the category name);
     a ``container`` generator declares its interior with ``Design.interior``.
     """
+    if not 1 <= revision <= LIBRARY:
+        raise ValueError(f"{category}: a build's revision is in 1..{LIBRARY}, got {revision}")
 
     def register(build: Callable[[Design], Traits]) -> Callable[[Design], Traits]:
         if category in GENERATORS:
             raise ValueError(f"category {category!r} has two generators")
         nouns = synonyms or (category.replace("_", " "),)
-        _add(CategoryGenerator(category, build, nouns, size, graspable, container))
+        _add(CategoryGenerator(category, build, nouns, size, graspable, container, revision))
         return build
 
     return register
@@ -64,7 +72,8 @@ def generator(
 
 def revised(category: str, revision: int):
     """Register ``build`` as the generator of ``category`` from library ``revision`` on: the
-    same thing (nouns, size prior, kind) built better. Earlier revisions keep their build."""
+    same thing (nouns, size prior, kind) built better, on top of its newest build. Earlier
+    revisions keep their build."""
     if not 2 <= revision <= LIBRARY:
         raise ValueError(f"{category}: a revision is numbered 2..{LIBRARY}, got {revision}")
 
@@ -73,6 +82,12 @@ def revised(category: str, revision: int):
             raise ValueError(f"cannot revise {category!r}: it has no generator yet")
         if revision in REVISIONS[category]:
             raise ValueError(f"category {category!r} has two builds at revision {revision}")
+        newest = GENERATORS[category].revision
+        if revision < newest:
+            raise ValueError(
+                f"cannot revise {category!r} at revision {revision}: its newest build came in "
+                f"revision {newest}"
+            )
         _add(dataclasses.replace(GENERATORS[category], build=build, revision=revision))
         return build
 
@@ -87,8 +102,16 @@ def _add(gen: CategoryGenerator) -> None:
 
 def generator_at(category: str, library: int) -> CategoryGenerator:
     """The build of ``category`` that library revision ``library`` uses (its newest build at
-    or before it)."""
+    or before it); a ``ValueError`` where its first build came later."""
     if not 1 <= library <= LIBRARY:
         raise ValueError(f"library revision {library} is not in 1..{LIBRARY}")
     builds = REVISIONS[category]
-    return builds[max(r for r in builds if r <= library)]
+    before = [r for r in builds if r <= library]
+    if not before:
+        which = "first build" if len(builds) > 1 else "build"
+        raise ValueError(
+            f"{category} has no build at library revision {library}: its {which} came in "
+            f"revision {min(builds)}; snapshots before revision 3 left the package at 1.0, "
+            "see the git tag v0.1.0"
+        )
+    return builds[max(before)]

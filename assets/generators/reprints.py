@@ -1,9 +1,10 @@
-"""Revision 3 reprints: categories whose labels drew a wordmark (a row of letter-like
+"""Reprints (revision 3): categories whose labels drew a wordmark (a row of letter-like
 strokes, read as "Lnol" or "oluo") print what the product is instead, in words that read
-upright and left to right from outside. Each reprint builds what the category's previous
-build builds and swaps each wordmark label (``label``, ``sticker``, ``wave``) for the same
-layout printing the words (``<layout>_words_<key>``, ``<layout>_around_<key>`` round a
-cylinder: same band, pictogram and inks).
+upright and left to right from outside. A reprint (``reprint``, under the category's
+``generator``) builds what the build it decorates builds and swaps each wordmark label
+(``label``, ``sticker``, ``wave``) for the same layout printing the words
+(``<layout>_words_<key>``, ``<layout>_around_<key>`` round a cylinder: same band, pictogram
+and inks).
 
 A box label whose largest face is its top (a band round a flat pack) is turned a quarter
 about z, its half extents swapped to match (the same box), so its words are read from the
@@ -14,24 +15,13 @@ their layout (``textures.FRONT``).
 from __future__ import annotations
 
 import dataclasses
+from collections.abc import Callable
 
 from ..design import Design, Traits
 from ..parts import Part
 from ..textures import LAYOUTS, WORDS, Texture
 from ..vocab import COLORS
-from . import food, groceries  # noqa: F401  (the builds reprinted: registered first)
 from .facing import top_to_front
-from .registry import REVISIONS, revised
-
-#: Category -> the words its labels print (a key of ``textures.WORDS``).
-REPRINTS = {
-    "canned_coke": "cola",
-    "chewing_gum": "gum",
-    "chocolate": "chocolate",
-    "juice": "juice",
-    "milk_carton": "milk",
-    "potato_chips": "chips",
-}
 
 
 def reprinted(part: Part, key: str) -> Part:
@@ -78,21 +68,24 @@ def _legible(texture: Texture, color: str) -> tuple[str, ...]:
     return tuple(inks)
 
 
-def _reprint(category: str, key: str) -> None:
-    before = REVISIONS[category][max(REVISIONS[category])]
+def reprint(key: str) -> Callable[[Callable[[Design], Traits]], Callable[[Design], Traits]]:
+    """Decorate a build: the returned build builds the same from the same draws, its
+    wordmark labels printing the words of ``key`` (a key of ``textures.WORDS``). The build
+    it reprints is its ``__wrapped__``."""
 
-    def build(d: Design) -> Traits:
-        traits = before.build(d)
-        d.parts[:] = [reprinted(p, key) for p in d.parts]
-        return traits
+    def wrap(before: Callable[[Design], Traits]) -> Callable[[Design], Traits]:
+        def build(d: Design) -> Traits:
+            traits = before(d)
+            d.parts[:] = [reprinted(p, key) for p in d.parts]
+            return traits
 
-    build.__name__ = f"{category}_3"
-    build.__doc__ = (
-        f"Revision 3: revision {before.revision}'s {category.replace('_', ' ')}, its labels "
-        f"printing {' '.join(WORDS[key])} where they drew a wordmark."
-    )
-    revised(category, 3)(build)
+        build.__name__ = build.__qualname__ = f"{before.__name__}_reprinted"
+        build.__doc__ = (
+            f"{before.__name__}, its labels printing {' '.join(WORDS[key])} where they drew "
+            "a wordmark."
+        )
+        build.__module__ = before.__module__
+        build.__wrapped__ = before
+        return build
 
-
-for _category, _key in REPRINTS.items():
-    _reprint(_category, _key)
+    return wrap

@@ -8,7 +8,7 @@ from ..design import Design, Traits
 from ..parts import axis_angle_quat
 from ..textures import Texture
 from .desktop import BRIGHT
-from .registry import generator, revised
+from .registry import generator
 
 
 @generator("stapler", size=(0.12, 0.2))
@@ -74,32 +74,8 @@ def ballpoint_pen(d: Design) -> Traits:
     size=(0.085, 0.13),
     synonyms=("pen holder", "pencil holder", "pen cup", "pencil cup"),
     container=True,
+    revision=3,
 )
-def pen_holder(d: Design) -> Traits:
-    material = d.choice(["plastic", "metal", "wood", "ceramic"])
-    color = d.choice(
-        {
-            "plastic": BRIGHT + ["white", "transparent"],
-            "metal": ["silver", "black", "golden", "gray"],
-            "wood": ["brown", "beige"],
-            "ceramic": ["white", "blue", "black", "green", "beige"],
-        }[material]
-    )
-    t = {"metal": 0.0015, "wood": 0.006, "plastic": 0.003, "ceramic": 0.005}[material]
-    h, floor = d.uniform(0.085, 0.115), 0.006
-    if d.rng.random() < 0.5:
-        r = d.uniform(0.03, 0.04)
-        d.upright("floor", r + t, floor, 0.0, material, color)
-        d.wall("wall", r, t, h - floor, floor, material, color, segments=18)
-        d.interior((r * 0.68, r * 0.68), floor_z=floor, rim_z=h)
-        return Traits((color,), material, "cylinder")
-    hx, hy = d.uniform(0.032, 0.042), d.uniform(0.032, 0.042)
-    d.open_box("cup", (hx, hy), h, t, material, color, floor=floor, tags=(-1, 1))
-    d.interior(((hx - t) * 0.85, (hy - t) * 0.85), floor_z=floor, rim_z=h)
-    return Traits((color,), material, "cuboid")
-
-
-@revised("pen_holder", 3)
 def pen_holder_3(d: Design) -> Traits:
     """Revision 3: the holder carries a few pens and pencils standing against its wall and
     sticking out above the rim, clear of the interior (an empty one read as a cup)."""
@@ -204,23 +180,7 @@ def _desk_pen(d: Design, name: str, x: float, y: float, z0: float, top: float, l
     )
 
 
-@generator("glue_stick", size=(0.07, 0.12), synonyms=("glue stick", "stick of glue"))
-def glue_stick(d: Design) -> Traits:
-    body = d.choice(["white", "yellow", "blue", "purple", "green", "red"])
-    cap = d.choice(["white", "red", "blue", "orange", "purple", "black"])
-    r, h = d.uniform(0.009, 0.014), d.uniform(0.075, 0.11)
-    cap_h, twist = h * d.uniform(0.25, 0.32), 0.01
-    d.upright("twist", r * 0.93, twist, 0.0, "plastic", cap)
-    body_h = h - twist - cap_h
-    d.upright("body", r, body_h, twist, "plastic", body, solid_fraction=0.6)
-    band = (r + 0.0005, body_h * 0.7, twist + body_h * 0.15)
-    label = d.choice(["white", "yellow", "red", "black"])
-    d.upright("label", *band, "paper", label, visual_only=True)
-    d.upright("cap", r + 0.0008, cap_h, h - cap_h, "plastic", cap, solid_fraction=0.4)
-    return Traits((body, cap), "plastic", "cylinder")
-
-
-@revised("glue_stick", 3)
+@generator("glue_stick", size=(0.07, 0.12), synonyms=("glue stick", "stick of glue"), revision=3)
 def glue_stick_3(d: Design) -> Traits:
     """Revision 3: an open glue stick, a stubby printed tube with the white glue twisted up
     out of it, its ribbed twist base, and the cap lying beside it (capped, it read as a
@@ -285,44 +245,9 @@ def glue_stick_3(d: Design) -> Traits:
     return Traits((body, cap), "plastic", "cylinder")
 
 
-@generator("correction_tape", size=(0.06, 0.1), synonyms=("correction tape", "white-out tape"))
-def correction_tape(d: Design) -> Traits:
-    color = d.choice(["blue", "pink", "purple", "green", "white", "orange", "yellow"])
-    R, hz = d.uniform(0.016, 0.021), d.uniform(0.014, 0.019)
-    front = d.uniform(0.03, 0.045)
-    d.upright("reel_case", R, hz, 0.0, "plastic", color, solid_fraction=0.5)
-    d.slab(
-        "body",
-        (front / 2, R * 0.72, hz / 2),
-        0.0,
-        "plastic",
-        color,
-        xy=(front / 2, 0),
-        solid_fraction=0.5,
-    )
-    nose = 0.012
-    d.slab(
-        "nose", (nose / 2, 0.005, hz * 0.3), hz * 0.2, "plastic", color, xy=(front + nose / 2, 0)
-    )
-    d.slab(
-        "tip",
-        (0.0015, 0.0065, hz * 0.2),
-        hz * 0.3,
-        "plastic",
-        "white",
-        xy=(front + nose + 0.0015, 0),
-    )
-    d.upright("window", R * 0.82, 0.0005, hz, "plastic", "transparent", visual_only=True)
-    d.upright("spool", R * 0.7, 0.0006, hz + 0.0005, "paper", "white", visual_only=True)
-    hub = d.choice(["black", "gray", "yellow"])
-    d.upright("hub", R * 0.3, 0.0006, hz + 0.0011, "plastic", hub, visual_only=True)
-    for k in range(3):
-        rib = (front * 0.55 + k * 0.004, 0, hz + 0.0004)
-        d.box(f"rib_{k}", (0.001, R * 0.55, 0.0004), rib, "rubber", "gray", visual_only=True)
-    return Traits((color, "white"), "plastic", "flat")
-
-
-@revised("correction_tape", 3)
+@generator(
+    "correction_tape", size=(0.06, 0.1), synonyms=("correction tape", "white-out tape"), revision=3
+)
 def correction_tape_3(d: Design) -> Traits:
     """Revision 3: a flat, mouse-shaped dispenser lying on its side, the big white tape roll
     and the smaller take-up reel showing on its top, the white tape running along to the
@@ -653,48 +578,7 @@ def cutter_knife(d: Design) -> Traits:
     return Traits((color, grip), "plastic", "elongated")
 
 
-@generator("stamp", size=(0.05, 0.1), synonyms=("rubber stamp", "ink stamp"))
-def stamp(d: Design) -> Traits:
-    ink = d.choice(["red", "black", "blue", "purple"])
-    if d.rng.random() < 0.5:  # a wooden block with a knob
-        wood = d.choice(["brown", "beige"])
-        knob = d.choice([wood, "black", "red"])
-        lx, ly = d.uniform(0.03, 0.05), d.uniform(0.025, 0.04)
-        block, neck = d.uniform(0.012, 0.018), d.uniform(0.025, 0.035)
-        d.slab("pad", (lx / 2 - 0.002, ly / 2 - 0.002, 0.002), 0.0, "rubber", ink)
-        d.slab("block", (lx / 2, ly / 2, block / 2), 0.004, "wood", wood)
-        d.upright("neck", 0.007, neck, 0.004 + block, "wood", knob)
-        kr = d.uniform(0.012, 0.016)
-        d.ellipsoid(
-            "knob", (kr, kr, kr * 0.8), (0, 0, 0.004 + block + neck + kr * 0.5), "wood", knob
-        )
-        return Traits((wood, knob), "wood", "T-shape")
-    color = d.choice(["black", "blue", "red", "gray"])
-    lx, ly, h = d.uniform(0.04, 0.06), d.uniform(0.025, 0.035), d.uniform(0.045, 0.06)
-    d.slab("pad", (lx / 2, ly / 2, 0.004), 0.0, "plastic", "black")
-    d.slab(
-        "body",
-        (lx / 2 - 0.002, ly / 2 - 0.002, h * 0.3),
-        0.008,
-        "plastic",
-        color,
-        solid_fraction=0.5,
-    )
-    d.slab(
-        "handle",
-        (lx / 2 + 0.003, ly / 2, h * 0.12),
-        0.008 + h * 0.6,
-        "plastic",
-        color,
-        solid_fraction=0.5,
-    )
-    window = (0, -ly / 2 + 0.0018, 0.008 + h * 0.3)
-    d.box("window", (lx * 0.3, 0.0003, h * 0.12), window, "plastic", "white", visual_only=True)
-    d.box("ink_dot", (lx * 0.05, 0.0003, h * 0.04), window, "plastic", ink, visual_only=True)
-    return Traits((color,), "plastic", "cuboid")
-
-
-@revised("stamp", 3)
+@generator("stamp", size=(0.05, 0.1), synonyms=("rubber stamp", "ink stamp"), revision=3)
 def stamp_3(d: Design) -> Traits:
     """Revision 3: the classic rubber stamp: a turned wooden handle (a round knob on a slim
     waisted neck and a collar) on a grained wooden block, a white index label on top printed
@@ -756,48 +640,9 @@ def stamp_3(d: Design) -> Traits:
     return Traits(colors, "wood", "T-shape")
 
 
-@generator("staples_box", size=(0.05, 0.085), synonyms=("box of staples", "staples box"))
-def staples_box(d: Design) -> Traits:
-    color = d.choice(["red", "blue", "yellow", "green", "black", "orange"])
-    lx, ly, h = d.uniform(0.05, 0.08), d.uniform(0.02, 0.035), d.uniform(0.012, 0.022)
-    clear = d.rng.random() < 0.4
-    body = "transparent" if clear else color
-    d.slab(
-        "box",
-        (lx / 2, ly / 2, h * 0.35),
-        0.0,
-        "plastic" if clear else "paper",
-        body,
-        solid_fraction=0.6,
-    )
-    d.slab(
-        "lid",
-        (lx / 2 + 0.0008, ly / 2 + 0.0008, h * 0.15),
-        h * 0.7,
-        "paper",
-        color,
-        solid_fraction=0.6,
-    )
-    label = "white" if color != "white" else "black"
-    d.box(
-        "label",
-        (lx * 0.38, ly * 0.36, 0.0002),
-        (0, 0, h + 0.0002),
-        "paper",
-        label,
-        visual_only=True,
-        texture=Texture("sticker", (color, "silver"), "staple"),
-    )
-    rows = int(ly / 0.007)
-    for k in range(rows):
-        y = -ly / 2 + (k + 0.5) * ly / rows
-        z = h * 0.35 if clear else h + 0.0005
-        strip = (lx * 0.4, min(0.0018, ly / rows * 0.3), 0.0003 if not clear else h * 0.3)
-        d.box(f"staples_{k}", strip, (0, y, z), "metal", "silver", visual_only=True)
-    return Traits((color, "transparent") if clear else (color, label), "paper", "cuboid")
-
-
-@revised("staples_box", 3)
+@generator(
+    "staples_box", size=(0.05, 0.085), synonyms=("box of staples", "staples box"), revision=3
+)
 def staples_box_3(d: Design) -> Traits:
     """Revision 3: a small closed carton printed with a big staple, and a strip of staples
     lying in front of it on its legs, the single staples marked across it (the open box of
@@ -872,33 +717,11 @@ def staples_box_3(d: Design) -> Traits:
 
 
 @generator(
-    "sticky_notes", size=(0.05, 0.1), synonyms=("sticky notes", "post-it notes", "sticky pad")
+    "sticky_notes",
+    size=(0.05, 0.1),
+    synonyms=("sticky notes", "post-it notes", "sticky pad"),
+    revision=3,
 )
-def sticky_notes(d: Design) -> Traits:
-    notes = ["yellow", "yellow", "pink", "blue", "green", "orange"]
-    first = d.choice(notes)
-    second = d.choice([c for c in notes if c != first]) if d.rng.random() < 0.35 else first
-    side = d.uniform(0.05, 0.068)
-    lx, thick = side * d.choice([1.0, 1.0, 1.3]), d.uniform(0.008, 0.018)
-    d.slab("pad", (lx / 2, side / 2, thick / 2), 0.0, "paper", first)
-    layers = d.choice([2, 3, 4])
-    for k in range(1, layers, 2):  # every other layer of a two-colour pad
-        band = (lx / 2 + 0.0002, side / 2 + 0.0002, thick / layers / 2)
-        d.slab(f"layer_{k}", band, k * thick / layers, "paper", second, visual_only=True)
-    top = (lx / 2 - 0.004, side / 2 - 0.004, 0.0002)
-    d.box(
-        "top_sheet",
-        top,
-        (0, 0, thick + 0.0002),
-        "paper",
-        second if layers % 2 == 0 else first,
-        yaw=d.uniform(0.04, 0.1),
-        visual_only=True,
-    )
-    return Traits(tuple(dict.fromkeys((first, second))), "paper", "cuboid")
-
-
-@revised("sticky_notes", 3)
 def sticky_notes_3(d: Design) -> Traits:
     """Revision 3: a square pad of canary-yellow (or bright orange or green) sticky notes,
     its sheets showing as fine lines round its sides, the top note glued along its far

@@ -5,26 +5,12 @@ from __future__ import annotations
 import math
 
 from ..design import Design, Traits
-from .registry import generator, revised
-
-GRIPS = ["red", "blue", "yellow", "black", "orange", "green"]
+from .registry import generator
 
 
-@generator("hex_key", size=(0.08, 0.16), synonyms=("hex key", "allen key", "allen wrench"))
-def hex_key(d: Design) -> Traits:
-    color = d.choice(["black", "black", "silver", "golden"])
-    a = d.uniform(0.004, 0.005)
-    long_arm, short_arm = d.uniform(0.085, 0.14), a * d.uniform(6, 8)
-    vertex = 2 * a / math.sqrt(3)
-    d.hex_rod("long_arm", a, long_arm, (0, 0, a), "metal", color)
-    short_center = (long_arm / 2 - vertex, short_arm / 2 - vertex, a)
-    d.hex_rod("short_arm", a, short_arm, short_center, "metal", color, yaw=math.pi / 2)
-    if d.choice([True, False]):
-        d.sphere("ball_end", a * 0.98, (-long_arm / 2 - a * 0.5, 0, a), "metal", color)
-    return Traits((color,), "metal", "L-shape")
-
-
-@revised("hex_key", 3)
+@generator(
+    "hex_key", size=(0.08, 0.16), synonyms=("hex key", "allen key", "allen wrench"), revision=3
+)
 def hex_key_3(d: Design) -> Traits:
     """Revision 3: mostly a set of L-shaped hex keys of falling sizes nested in a plastic
     clip, else one key with a rounded bend and a ball end (the single straight key read as a
@@ -131,52 +117,8 @@ def measuring_tape(d: Design) -> Traits:
     "pliers",
     size=(0.13, 0.22),
     synonyms=("pliers", "pair of pliers", "needle-nose pliers"),
+    revision=3,
 )
-def pliers(d: Design) -> Traits:
-    grip = d.choice(GRIPS)
-    steel = d.choice(["silver", "silver", "gray", "black"])
-    needle = d.choice([True, False])
-    length, t = d.uniform(0.14, 0.2), d.uniform(0.009, 0.011)
-    jaw = length * d.uniform(0.34, 0.4) if needle else length * d.uniform(0.22, 0.27)
-    handle, spread = length - jaw, d.uniform(0.018, 0.026)
-    jaw_w = 0.0025 if needle else 0.0045
-    d.box("joint", (0.011, 0.01, t / 2), (0, 0, t / 2), "metal", steel)
-    d.upright("rivet", 0.0045, t + 0.0015, 0.0, "metal", "silver")
-    r = t / 2 + 0.0015
-    for k, s in enumerate((-1, 1)):
-        d.segment(
-            f"jaw_{k}",
-            "box",
-            (0.008, s * jaw_w, t / 2),
-            (jaw, s * jaw_w * 0.4, t / 2),
-            (jaw_w, t / 2),
-            "metal",
-            steel,
-        )
-        d.segment(
-            f"arm_{k}",
-            "box",
-            (-0.008, s * 0.006, t / 2),
-            (-handle, s * spread, t / 2),
-            (0.0035, t * 0.4),
-            "metal",
-            steel,
-        )
-        f = (handle * 0.3 - 0.008) / (handle - 0.008)
-        y0 = 0.006 + (spread - 0.006) * f
-        d.segment(
-            f"grip_{k}",
-            "capsule",
-            (-handle * 0.3, s * y0, r),
-            (-handle, s * spread, r),
-            r,
-            "plastic",
-            grip,
-        )
-    return Traits((grip, steel), "metal", "elongated")
-
-
-@revised("pliers", 3)
 def pliers_3(d: Design) -> Traits:
     """Revision 3: ordinary combination pliers lying flat across the view, jaws closed: a
     chunky head tapering from a big round pivot with a polished rivet to a broad, flat,
@@ -315,61 +257,7 @@ def mini_hammer(d: Design) -> Traits:
 GLUE_GUN_COLORS = ["blue", "black", "gray", "green", "pink", "orange", "yellow"]
 
 
-@generator("glue_gun", size=(0.15, 0.28), synonyms=("glue gun", "hot glue gun"))
-def glue_gun(d: Design) -> Traits:
-    color = d.choice(GLUE_GUN_COLORS)
-    trigger = d.choice(["black", "gray", color])
-    body, bh, w = d.uniform(0.11, 0.15), d.uniform(0.034, 0.044), d.uniform(0.028, 0.034)
-    grip_h, rake = d.uniform(0.065, 0.085), d.uniform(0.2, 0.35)
-    zb = grip_h + 0.012
-    d.box(
-        "barrel",
-        (body / 2, w / 2, bh / 2),
-        (0, 0, zb + bh / 2),
-        "plastic",
-        color,
-        solid_fraction=0.4,
-    )
-    zc = zb + bh * 0.45
-    d.rod("nose", bh * 0.3, 0.02, (body / 2 + 0.01, 0, zc), "plastic", color)
-    d.rod("nozzle", 0.005, 0.012, (body / 2 + 0.026, 0, zc), "metal", "silver")
-    d.rod("tip", 0.0022, 0.008, (body / 2 + 0.036, 0, zc), "metal", "silver")
-    stick = d.uniform(0.02, 0.07)
-    d.rod(
-        "glue_stick",
-        0.0055,
-        stick,
-        (-body / 2 - stick / 2, 0, zc),
-        "plastic",
-        d.choice(["transparent", "white"]),
-    )
-    x_top = -body / 2 + 0.03
-    x_butt = x_top - grip_h * math.tan(rake)
-    d.segment(
-        "grip",
-        "box",
-        (x_top, 0, zb + 0.004),
-        (x_butt, 0, 0.012),
-        (w * 0.45, 0.013),
-        "plastic",
-        color,
-        solid_fraction=0.5,
-    )
-    d.box("butt", (0.02, w * 0.65, 0.006), (x_butt, 0, 0.006), "plastic", color)
-    d.segment(
-        "trigger",
-        "box",
-        (x_top + 0.022, 0, zb),
-        (x_top + 0.018, 0, zb - 0.028),
-        (w * 0.22, 0.005),
-        "plastic",
-        trigger,
-    )
-    _glue_gun_stand(d, body / 2 - 0.02, w, zb)
-    return Traits((color,) if trigger == color else (color, trigger), "plastic", "L-shape")
-
-
-@revised("glue_gun", 2)
+@generator("glue_gun", size=(0.15, 0.28), synonyms=("glue gun", "hot glue gun"), revision=2)
 def glue_gun_2(d: Design) -> Traits:
     """Revision 2: a round barrel tapering to a long metal nozzle, the white glue stick
     fed in at the back, a rounded grip with its cord, the trigger in front of the grip in

@@ -36,8 +36,7 @@ VERBS = (
 
 
 def version_line() -> str:
-    """The package's version and the benchmark version its stored sets make (pre-release
-    until 1.0 is released)."""
+    """The package's version and the benchmark version its stored sets make."""
     from instructmove_ms import __version__
     from instructmove_ms.heldout import benchmark_name
 

@@ -104,6 +104,23 @@ def _cmd_assets_build(args: argparse.Namespace) -> int:
     for category in tqdm(categories, desc="generating", unit="category"):
         entries += snap.build_entries([category], args.per_category, frozen)
     folder = snap.package_snapshot_dir() if shipped else snap.user_snapshot_dir()
+    if shipped and (snap.snapshot_path(args.name) is not None):
+        released = json.loads(snap.snapshot_path(args.name).read_text())["instances"]
+        if released != entries:
+            first = (
+                f"{len(entries)} instances, not {len(released)}"
+                if len(entries) != len(released)
+                else next(
+                    f"{e['category']} #{e['index']}"
+                    for e, r in zip(entries, released, strict=True)
+                    if e != r
+                )
+            )
+            raise ValueError(
+                f"snapshot {args.name!r} ships with a released benchmark and would change "
+                f"({first}): a changed generator is a new library revision (@revised), "
+                "frozen as a new snapshot (--name NEW)"
+            )
     path = snap.write_snapshot(folder / f"{args.name}.json", args.name, entries, frozen)
     print(
         f"snapshot {args.name!r}: {len(entries)} instances of {len(categories)} categories "

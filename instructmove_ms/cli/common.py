@@ -21,15 +21,15 @@ def _add_workers(p: argparse.ArgumentParser, what: str) -> None:
 
 def _add_set_version(p: argparse.ArgumentParser) -> None:
     """``--set-version`` of the stored held-out sets a verb reads."""
-    from instructmove_ms.heldout import SET_VERSION, SET_VERSIONS
+    from instructmove_ms.heldout import SET_VERSION, SET_VERSIONS, benchmark_name
 
     p.add_argument(
         "--set-version",
         type=int,
         choices=SET_VERSIONS,
         default=SET_VERSION,
-        help=f"stored held-out sets to read (default {SET_VERSION}; older ones reproduce "
-        "published results)",
+        help=f"stored held-out sets to read (default {SET_VERSION}, {benchmark_name()}; each "
+        "released benchmark version stays loadable)",
     )
 
 

@@ -20,7 +20,7 @@ def _cmd_episodes_write(args: argparse.Namespace) -> int:
     from instructmove_ms.tasks import TASKS
 
     tasks = [args.task] if args.task else list(TASKS)
-    out = Path(args.out) if args.out else None
+    out = Path(args.out)
     for env_id in tasks:
         for robot in [args.robot] if args.robot else TASKS[env_id].supported_robots:
             for split in EVAL_SPLITS:
@@ -41,7 +41,7 @@ def _cmd_episodes_write(args: argparse.Namespace) -> int:
                 env.close()
                 path = heldout.write_set(heldout.set_path(env_id, robot, split, out), specs)
                 tqdm.write(f"{len(specs)} episodes -> {path}")
-    heldout.write_checksums(out or heldout.default_folder())
+    heldout.write_checksums(out)
     return 0
 
 
@@ -86,7 +86,12 @@ def add_parsers(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--task", default=None, help="one env id (default: every family)")
     p.add_argument("--robot", default=None, help="one robot (default: every supported one)")
     p.add_argument("--n", type=int, default=100, help="episodes per set")
-    p.add_argument("--out", default=None, help="folder (default: the package's own)")
+    p.add_argument(
+        "--out",
+        required=True,
+        help="folder for the sets (released sets in the package are never written over; a "
+        "new benchmark version's sets go in a new tasks/episodes/v<N>)",
+    )
     p.add_argument(
         "--measured-in",
         type=int,

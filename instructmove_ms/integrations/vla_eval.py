@@ -29,8 +29,8 @@ from . import require
 _base = require("vla_eval.benchmarks.base", "vla-eval", "the vla-eval benchmark")
 _specs = require("vla_eval.specs", "vla-eval", "the vla-eval benchmark")
 
+from .. import heldout  # noqa: E402
 from ..episode import CONDITIONS  # noqa: E402  (after the optional import's check)
-from ..heldout import SET_VERSIONS  # noqa: E402
 from ..obs_formats import SIZE  # noqa: E402
 from ..splits import EVAL_SPLITS  # noqa: E402
 from ..tasks import TASKS  # noqa: E402
@@ -47,8 +47,8 @@ class InstructMoveBenchmark(_base.StepBenchmark):
     """The held-out sets of ``tasks`` (env ids; default every family) for ``robot``
     (default each task's own) on ``split``, under each of ``conditions`` (default
     ``normal``; ``["all"]`` for the five), perturbed at ``perturb`` (e.g. ``lighting:2``),
-    from the stored sets of ``set_version`` (default the current; an older one reproduces
-    results published on it)."""
+    from the stored sets of ``set_version`` (default the current; an earlier released one
+    reproduces results on it)."""
 
     render_backends: ClassVar[frozenset[str]] = frozenset(RENDER_BACKENDS)
     render_backend: ClassVar[str | None] = None
@@ -80,7 +80,7 @@ class InstructMoveBenchmark(_base.StepBenchmark):
         for condition in conditions or ():
             check_choice("condition", condition, CONDITIONS)
         if set_version is not None:
-            check_choice("set version", set_version, SET_VERSIONS)
+            check_choice("set version", set_version, heldout.SET_VERSIONS)
         self.sets = [
             EpisodeSet(
                 env_id,
