@@ -83,7 +83,7 @@ log "building the wheel"
 wheels=("$work"/dist/instructmove_ms-*.whl)
 [ "${#wheels[@]}" = 1 ] && [ -f "${wheels[0]}" ] || fail "expected one wheel in $work/dist"
 wheel="${wheels[0]}"
-"$py" - "$wheel" <<'EOF' || fail "the wheel misses files"
+"$py" - "$wheel" <<'EOF' || fail "the wheel does not hold what ships"
 import sys
 import zipfile
 
@@ -96,13 +96,19 @@ want = [
     "instructmove_ms/tasks/__init__.py",
     "instructmove_ms/assets/__init__.py",
     "instructmove_ms/assets/taxonomy.yaml",
-    "instructmove_ms/assets/snapshots/default.json",
-    "instructmove_ms/tasks/episodes/v3/PickCategory-InstructMove/franka/seen.jsonl",
-    "instructmove_ms/tasks/episodes/v2/PickCategory-InstructMove/franka/seen.jsonl",
+    "instructmove_ms/assets/snapshots/recognisable.json",
+    "instructmove_ms/assets/snapshots/appearance/recognisable.json",
+    "instructmove_ms/tasks/episodes/v7/checksums.json",
+    "instructmove_ms/tasks/episodes/v7/PickCategory-InstructMove/franka/seen.jsonl",
 ]
 missing = [n for n in want if n not in names]
 if missing:
     sys.exit(f"missing: {missing}")
+# one stored-set version (InstructMove 1.0) and one snapshot ship
+sets = {n.split("/")[3] for n in names if n.startswith("instructmove_ms/tasks/episodes/")}
+snapshots = {n for n in names if n.startswith("instructmove_ms/assets/snapshots/")}
+if sets != {"v7"} or len(snapshots) != 2:
+    sys.exit(f"the wheel holds other stored data: sets {sorted(sets)}, {sorted(snapshots)}")
 pth = zipfile.ZipFile(sys.argv[1]).read("instructmove_ms.pth").decode()
 if not pth.startswith("import ") or "instructmove_ms_autoload" not in pth:
     sys.exit(f"instructmove_ms.pth does not load the autoload hook: {pth!r}")
