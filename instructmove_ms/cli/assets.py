@@ -104,8 +104,9 @@ def _cmd_assets_build(args: argparse.Namespace) -> int:
     for category in tqdm(categories, desc="generating", unit="category"):
         entries += snap.build_entries([category], args.per_category, frozen)
     folder = snap.package_snapshot_dir() if shipped else snap.user_snapshot_dir()
-    if shipped and (snap.snapshot_path(args.name) is not None):
-        released = json.loads(snap.snapshot_path(args.name).read_text())["instances"]
+    released_path = snap.snapshot_path(args.name) if shipped else None
+    if released_path is not None:
+        released = json.loads(released_path.read_text())["instances"]
         if released != entries:
             first = (
                 f"{len(entries)} instances, not {len(released)}"
@@ -163,20 +164,21 @@ def _cmd_assets_import(args: argparse.Namespace) -> int:
 
 
 def add_parsers(sub: argparse._SubParsersAction) -> None:
-    from instructmove_ms.assets.snapshot import DEFAULT_SNAPSHOT, SHIPPED
+    from instructmove_ms.assets.snapshot import DEFAULT_SNAPSHOT
 
     assets = _add_group(sub, "assets", "the object library")
     p = assets.add_parser("build", help="generate the library and freeze it as a snapshot")
     p.add_argument(
         "--name",
         default=DEFAULT_SNAPSHOT,
-        help=f"snapshot name (default: {DEFAULT_SNAPSHOT}; {', '.join(SHIPPED)} ship)",
+        help=f"snapshot name (default: {DEFAULT_SNAPSHOT}, the shipped one, which a build may "
+        "not change; another name writes a snapshot of your own)",
     )
     p.add_argument("--per-category", type=int, default=INSTANCES_PER_CATEGORY)
     p.add_argument(
         "--plain",
         action="store_true",
-        help="instances without their textures (the shipped snapshots know their own look "
+        help="instances without their textures (the shipped snapshot knows its own look "
         "and library revision; others are built at the newest)",
     )
     p.set_defaults(func=_cmd_assets_build)

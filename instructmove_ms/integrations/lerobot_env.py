@@ -284,10 +284,10 @@ if _configs is not None:
         """``--env.type=instructmove``: the stored held-out episodes of ``task`` (an env id)
         for ``robot`` (None: the task's own) on ``split`` under ``condition`` and the
         perturbation levels ``perturb`` (e.g. ``lighting:2,camera:1``), of set version
-        ``set_version`` (None: the current; an earlier released one reproduces results on it), from
-        ``episode_index`` on, cameras at ``width`` x ``height``. ``episode_length`` cuts the
-        horizon (None: the stored one, as the benchmark scores); ``results`` is a JSON-lines
-        file each finished episode's InstructMove score row is appended to."""
+        ``set_version`` (None: the current; an earlier released one reproduces results on
+        it), from ``episode_index`` on, cameras at ``width`` x ``height``. ``episode_length``
+        cuts the horizon (None: the stored one, as the benchmark scores); ``results`` is a
+        JSON-lines file each finished episode's InstructMove score row is appended to."""
 
         task: str | None = "PickCategory-InstructMove"
         robot: str | None = None
