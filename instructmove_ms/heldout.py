@@ -7,7 +7,7 @@ benchmark version is one set version (``BENCHMARKS``): InstructMove 1.0 is set v
 played on the ``recognisable`` snapshot and said as people say it (``assets.expressions``).
 Each episode names its snapshot, and an env builds it from that one. A later benchmark
 version adds its sets beside these, which stay loadable (``--set-version``); the
-pre-release versions 2-6 are kept by the git tag ``v0.1.0``.
+pre-release versions 2-6 are in the repository's history (``git checkout ee264ad``).
 
 A set also exports as a config of ManiSkill's evaluator convention: ``env_info`` (``env_id``,
 ``max_episode_steps``, ``env_kwargs``) and ``episodes`` of ``{episode_id, reset_kwargs}``,

@@ -118,7 +118,7 @@ BUILDS = sorted((c, r) for r, cats in REVISED.items() for c in cats)
 #: What ``generator_at`` says of a revision older than a category's build.
 NO_BUILD = (
     "{category} has no build at library revision {asked}: its {which} came in revision "
-    "{came}; snapshots before revision 3 left the package at 1.0, see the git tag v0.1.0"
+    "{came}; snapshots before revision 3 left the package at 1.0, git checkout ee264ad for them"
 )
 
 

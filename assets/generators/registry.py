@@ -6,8 +6,8 @@ part of each instance's identity (``catalog.instance_uuid``). A later library re
 rebuilds a category with ``revised``, on top of its newest build. A snapshot records the
 library revision it was frozen at, and ``generator_at`` builds each category with its newest
 build at or before it, so a snapshot keeps regenerating its instances exactly. The builds
-only snapshots before revision 3 used left the package at 1.0 (git tag v0.1.0): at an older
-library revision, a category whose build came later has none.
+only snapshots before revision 3 used left the package at 1.0 (commit ee264ad keeps them):
+at an older library revision, a category whose build came later has none.
 """
 
 from __future__ import annotations
@@ -112,6 +112,6 @@ def generator_at(category: str, library: int) -> CategoryGenerator:
         raise ValueError(
             f"{category} has no build at library revision {library}: its {which} came in "
             f"revision {min(builds)}; snapshots before revision 3 left the package at 1.0, "
-            "see the git tag v0.1.0"
+            "git checkout ee264ad for them"
         )
     return builds[max(before)]
