@@ -7,6 +7,7 @@ import sys
 
 from instructmove_ms.cli import (
     assets,
+    audit,
     demos,
     doctor,
     envs,
@@ -27,6 +28,7 @@ VERBS = (
     episodes,
     demos,
     evaluate,
+    audit,
     export,
     serve,
     perturb,

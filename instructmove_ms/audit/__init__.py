@@ -1,0 +1,106 @@
+"""The language-blind audit: can anything but the instruction tell which candidate is meant?
+
+Adversaries that never read the instruction pick among each choice's options (``choices``):
+fixed rules (``rules``: odd one out, extremes, layout, visibility, novelty) and gradient-
+boosted trees (``learned``), trained on training scenes or cross-validated within the stored
+sets. ``run`` scores them per family, split and robot against chance (``stats``) and writes
+the report (``report``). A benchmark version passes when no adversary beats chance.
+"""
+
+from __future__ import annotations
+
+from collections import defaultdict
+from collections.abc import Sequence
+from pathlib import Path
+
+from ..heldout import SET_VERSION, benchmark_name
+from ..tasks import TASKS
+from . import report, rules
+from .choices import Choice
+from .scenes import fresh_choices, stored_choices, training_choices
+from .stats import Cell, cells
+
+__all__ = ["run", "judge"]
+
+#: Training scenes per family the learned adversary trains on, by default.
+TRAINING_SCENES = 300
+
+
+def _groups(choices: Sequence[Choice]) -> dict[tuple[str, str], list[Choice]]:
+    out: dict[tuple[str, str], list[Choice]] = defaultdict(list)
+    for c in choices:
+        out[(c.family, c.kind)].append(c)
+    return out
+
+
+def _adversaries(
+    group: Sequence[Choice], taught: Sequence[Choice] | None, trees: bool, source: str
+) -> list[Cell]:
+    """Every adversary's cells on ``group`` (one family and kind); the trained trees learn
+    from ``taught`` (its training choices) where given."""
+    from . import learned  # scikit-learn, only when an audit runs
+
+    found: list[Cell] = []
+    for name, rule in rules.rules().items():
+        scores = [rules.score(rule(c.options), c.answer) for c in group]
+        found += cells(group, scores, name, source)
+    if trees:
+        found += cells(group, learned.cross_validated(group), "trees, within the sets", source)
+        blind = learned.cross_validated(group, novelty=False)
+        found += cells(group, blind, "trees, no novelty flag", source)
+        if taught:
+            found += cells(group, learned.trained_on(taught, group), "trees, trained", source)
+    return found
+
+
+def judge(
+    stored: Sequence[Choice],
+    training: Sequence[Choice] = (),
+    trees: bool = True,
+    fresh: Sequence[Choice] = (),
+) -> tuple[list[Cell], list[Cell]]:
+    """(cells of the stored and the ``fresh`` choices, cells of the rules on the
+    ``training`` choices): every rule and, with ``trees``, the learned adversaries
+    (cross-validated within the choices judged, and trained on ``training``)."""
+    taught = _groups(training)
+    found: list[Cell] = []
+    for source, choices in (("stored", stored), ("fresh", fresh)):
+        for key, group in _groups(choices).items():
+            found += _adversaries(group, taught.get(key), trees, source)
+    on_training = [
+        c
+        for key, group in taught.items()
+        for c in _adversaries(group, None, False, "training")
+        if c.split == "pooled"
+    ]
+    return found, on_training
+
+
+def run(
+    out: Path,
+    version: int | None = None,
+    folder: Path | None = None,
+    training_scenes: int = TRAINING_SCENES,
+    fresh_scenes: int = 0,
+    progress: bool = True,
+) -> tuple[list[Cell], list[Path]]:
+    """Audit the stored sets of ``version`` (or under ``folder``) and, with ``fresh_scenes``,
+    that many fresh scenes per family and split; write the report under ``out``; returns
+    the cells and the files written."""
+    for what, count in (("training scenes", training_scenes), ("fresh scenes", fresh_scenes)):
+        if count < 0:
+            raise ValueError(f"{what} must be 0 or more, got {count}")
+    stored = stored_choices(version, folder)
+    training: list[Choice] = []
+    fresh: list[Choice] = []
+    for env_id in TASKS:
+        training += training_choices(env_id, training_scenes, progress)
+        fresh += fresh_choices(env_id, fresh_scenes, progress)
+    found, on_training = judge(stored, training, fresh=fresh)
+    about = {
+        "sets": str(folder) if folder else benchmark_name(version or SET_VERSION),
+        "episodes": len({(c.family, c.split, c.robot, c.seed) for c in stored}),
+        "training scenes per family": training_scenes,
+        "fresh scenes per family and split": fresh_scenes,
+    }
+    return found, report.write(out, about, found, on_training)
