@@ -89,11 +89,22 @@ def test_trees_learn_a_planted_signal_and_nothing_else(v7):
 
 
 def test_cli_audit_writes_the_report_and_fails_sets_v7(tmp_path):
+    from instructmove_ms.heldout import set_path, write_set
+    from instructmove_ms.splits import EVAL_SPLITS
+    from instructmove_ms.tasks import TASKS
+
+    sets = tmp_path / "sets"  # the first 20 episodes of every v7 set, as episodes write lays them
+    for env_id, task in TASKS.items():
+        for robot in task.supported_robots:
+            for split in EVAL_SPLITS:
+                specs = load_set(env_id, robot, split, version=7)[:20]
+                write_set(set_path(env_id, robot, split, sets), specs)
     out = tmp_path / "audit"
-    args = ["--set-version", "7", "--training-scenes", "6", "--fresh-scenes", "2"]
+    args = ["--sets", str(sets), "--training-scenes", "6", "--fresh-scenes", "2"]
     assert main(["audit", *args, "--out", str(out)]) == 1
     summary = json.loads((out / "summary.json").read_text())
-    assert summary["training scenes per family"] == 6
+    assert summary["sets"] == str(sets)
+    assert summary["episodes"] == 20 * 24
     fresh = [c for c in summary["cells"] if c["source"] == "fresh"]
     assert {c["split"] for c in fresh} == {"seen", "unseen_instance", "unseen_category", "pooled"}
     assert {c["scenes"] for c in fresh if c["split"] == "seen"} == {2}
