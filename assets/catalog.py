@@ -55,8 +55,13 @@ def size_bucket(height: float) -> str:
     return "small" if height < 0.05 else "medium" if height < 0.12 else "large"
 
 
+def stable_hash(text: str) -> int:
+    """A 32-bit hash of ``text``, the same on every machine and Python."""
+    return int.from_bytes(hashlib.sha256(text.encode()).digest()[:4], "little")
+
+
 def _stable_bucket(text: str) -> int:
-    return int.from_bytes(hashlib.sha256(text.encode()).digest()[:4], "little") % HELD_OUT_MODULUS
+    return stable_hash(text) % HELD_OUT_MODULUS
 
 
 def is_held_out_category(category: str) -> bool:
@@ -132,7 +137,8 @@ class Instance:
 
     @property
     def held_out(self) -> bool:
-        """True for the instances reserved for the unseen_instance split."""
+        """True for the instances InstructMove 1.0 (sampler 1) reserved for the
+        unseen_instance split; ``sampler.split_of`` gives each sampler's partition."""
         return _stable_bucket(f"instance/{self.uuid}") == 0
 
     def to_record(self) -> dict:
@@ -190,7 +196,6 @@ class Instance:
                 "half": [round(v, 5) for v in self.interior.half],
                 "height": round(self.interior.height, 5),
             },
-            "held_out": self.held_out,
         }
 
 

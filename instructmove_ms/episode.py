@@ -52,6 +52,8 @@ class EpisodeSpec:
     perturbation: dict = field(default_factory=dict)
     #: why the instruction singles out the goal, as the verifier found it (``verify.certify``)
     certificate: dict = field(default_factory=dict)
+    #: the sampler that drew the scene (``sampler.SAMPLERS``): 1 is InstructMove 1.0's
+    sampler: int = 1
     version: int = field(default=SPEC_VERSION)
 
     def __post_init__(self) -> None:
@@ -61,12 +63,14 @@ class EpisodeSpec:
             raise ValueError("the target must be one of the candidate goals")
 
     def to_dict(self) -> dict:
-        """The spec as plain data; empty ``perturbation`` and ``certificate`` are left out,
-        so an unperturbed, uncertified spec reads as it did before they existed."""
+        """The spec as plain data; empty ``perturbation`` and ``certificate`` and sampler 1
+        are left out, so such a spec reads as it did before they existed."""
         data = asdict(self)
         for key in ("perturbation", "certificate"):
             if not data[key]:
                 del data[key]
+        if data["sampler"] == 1:
+            del data["sampler"]
         return data
 
     def to_json(self) -> str:

@@ -89,7 +89,8 @@ class Cue:
     in ``EpisodeSpec.cue``, and the roles constrained so that it can single out the target),
     ``admits`` (refuse a cast the cue cannot phrase), ``arrange`` (layout order and
     predicate), ``phrase`` (the words naming the goal object) and ``alternative`` (the cue
-    that names another candidate); the verifier calls ``matches`` and ``explain``.
+    that names another candidate); the symmetric sampler (2) also calls ``group_size`` and
+    ``singles_out``; the verifier calls ``matches`` and ``explain``.
     Subclasses live with their family in ``tasks/``.
     """
 
@@ -97,6 +98,16 @@ class Cue:
         self, rng: np.random.Generator, roles: tuple[RoleSpec, ...]
     ) -> tuple[dict, tuple[RoleSpec, ...]]:
         raise NotImplementedError
+
+    def group_size(self, cue: dict, count: int) -> int:
+        """How many candidates a scene under ``cue`` holds, of the ``count`` asked: as many
+        as can all differ in what the cue names (by default all)."""
+        return count
+
+    def singles_out(self, cue: dict, group: Sequence[Instance]) -> list[int]:
+        """The members of a candidate ``group`` that ``cue`` as drawn can name (by default
+        every one); the symmetric sampler takes the goal uniformly among them."""
+        return list(range(len(group)))
 
     def admits(self, cue: dict, assigned: dict[str, list[Instance]]) -> None:
         """Raise ``sampler.RoleError`` where ``cue`` cannot single out the assigned target."""
@@ -109,10 +120,16 @@ class Cue:
         return None, None, cue
 
     def phrase(
-        self, rng: np.random.Generator, cue: dict, members: Members, goal: int, split: str
+        self,
+        rng: np.random.Generator,
+        cue: dict,
+        members: Members,
+        goal: int,
+        split: str,
+        sampler: int,
     ) -> str:
         """The words naming object ``goal`` under ``cue`` (they fill a template's
-        ``{target}``)."""
+        ``{target}``), as ``sampler``'s episodes say them."""
         raise NotImplementedError
 
     def alternative(self, cue: dict, members: Members, candidates: Sequence[int], goal: int):
@@ -151,6 +168,16 @@ class TaskSpec:
     clearance: float = 0.05
     workspace: Workspace = field(default_factory=Workspace)
     thresholds: Thresholds = field(default_factory=Thresholds)
+
+    #: templates InstructMove 1.0's sampler (1) still draws and later samplers do not
+    #: (fresh readers found them odd)
+    retired_templates: tuple[str, ...] = ()
+
+    def templates_of(self, sampler: int) -> tuple[str, ...]:
+        """The templates episodes of ``sampler`` are said with."""
+        if sampler == 1:
+            return self.templates
+        return tuple(t for t in self.templates if t not in self.retired_templates)
 
     def role(self, name: str) -> RoleSpec:
         return next(r for r in self.roles if r.name == name)

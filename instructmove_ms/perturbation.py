@@ -359,8 +359,10 @@ def _add_distractors(
         assigned.setdefault(obj.role, []).append(ctx.catalog[obj.uuid])
     key = f"{spec.seed}:more:{int(rng.integers(1 << 31))}"
     role = ctx.task.role("distractor")
+    if spec.sampler != 1:  # the symmetric sampler draws every candidate from the split's partition
+        role = dataclasses.replace(role, pool="target")
     try:
-        extra = more_members(role, assigned, count, ctx.catalog, spec.split, key)
+        extra = more_members(role, assigned, count, ctx.catalog, spec.split, key, spec.sampler)
     except RoleError:
         return None
     quads = [

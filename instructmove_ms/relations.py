@@ -48,6 +48,9 @@ PHRASES = {
     "near": ("near", "next to", "closest to"),
     "far from": ("farthest from", "furthest from"),
 }
+#: Phrases InstructMove 1.0's sampler (1) still says and later samplers do not: "on the
+#: right side of the chopping board" may mean lying on it.
+RETIRED_PHRASES = frozenset({"on the left side of", "on the right side of"})
 
 
 @dataclass(frozen=True)

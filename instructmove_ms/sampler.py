@@ -5,6 +5,13 @@ shape, material, size or name, against another role or among the role's own memb
 capability tags. Each slot takes, among the instances that satisfy every constraint, the one
 with the lowest hash of (seed, role, slot, uuid): rendezvous hashing, so the draw depends
 only on the seed and on which instances qualify, never on their order in the catalog.
+
+Two samplers are kept (``SAMPLERS``). Sampler 1 (InstructMove 1.0) draws the target from the
+split's partition and its rivals from the seen one, with the held-out instances of
+``catalog.Instance.held_out`` (about one in five). Sampler 2 (symmetric) draws the
+candidate group as one role, every member from the split's partition, with
+``HELD_OUT_PER_CATEGORY`` instances of each category held out (``symmetric`` merges a goal
+role with its rivals; the composer then picks the goal among the group).
 """
 
 from __future__ import annotations
@@ -12,8 +19,9 @@ from __future__ import annotations
 import dataclasses
 import hashlib
 from dataclasses import dataclass
+from functools import lru_cache
 
-from .assets.catalog import Catalog, Instance, is_held_out_category
+from .assets.catalog import Catalog, Instance, is_held_out_category, stable_hash
 from .splits import SPLITS
 from .validation import check_choice
 
@@ -25,12 +33,24 @@ EXTENT_RATIO = 1.3
 TAGS = ("graspable", "container")
 EACH_OTHER = "each_other"
 POOLS = ("target", "distractor", "any")
+#: The samplers an episode may come from: 1 is InstructMove 1.0's, 2 the symmetric one.
+SAMPLERS = (1, 2)
+#: The envs' default: the sampler of the current benchmark's stored sets, so that training
+#: scenes hold out what those sets test (a test checks the two agree). Sampler 2 becomes
+#: the default with the sets it draws.
+SAMPLER = 1
+#: The sampler new held-out sets are drawn with (``episodes write``).
+NEWEST_SAMPLER = max(SAMPLERS)
+#: Sampler 2 holds out this many instances of each seen category for unseen_instance (those
+#: of lowest hash): PickAttribute needs three of one category, PickSpatial two.
+HELD_OUT_PER_CATEGORY = 4
 
 
 @dataclass(frozen=True)
 class Constraint:
     """``attribute`` must ``relation`` ("match" or "differ") that of role ``other``
-    (or of the role's other members when ``other`` is "each_other")."""
+    (or of the role's other members when ``other`` is "each_other"); "smaller", "larger"
+    and "differ" on "extent" ask for ``EXTENT_RATIO`` between the largest dimensions."""
 
     attribute: str
     relation: str
@@ -39,8 +59,10 @@ class Constraint:
     def __post_init__(self) -> None:
         check_choice("constraint attribute", self.attribute, ATTRIBUTES)
         check_choice("constraint relation", self.relation, RELATIONS)
-        if (self.relation in ("smaller", "larger")) != (self.attribute == "extent"):
+        if self.relation in ("smaller", "larger") and self.attribute != "extent":
             raise ValueError("'smaller' and 'larger' compare the 'extent' attribute only")
+        if self.attribute == "extent" and self.relation == "match":
+            raise ValueError("'extent' takes 'smaller', 'larger' or 'differ'")
 
     def __str__(self) -> str:
         return f"{self.attribute} must {self.relation} {self.other}"
@@ -76,25 +98,49 @@ class RoleError(ValueError):
     """No instance satisfies a role's constraints."""
 
 
-def split_of(inst: Instance) -> str:
-    """The partition an instance belongs to: seen, unseen_instance or unseen_category."""
-    if is_held_out_category(inst.category):
-        return "unseen_category"
-    return "unseen_instance" if inst.held_out else "seen"
+@lru_cache(maxsize=16)
+def partition(catalog: Catalog, sampler: int = SAMPLER) -> dict[str, str]:
+    """uuid -> the split ``catalog``'s instance belongs to under ``sampler``: seen,
+    unseen_instance or unseen_category. Held-out categories are the same for both samplers;
+    sampler 1 held out the instances of ``Instance.held_out``, sampler 2 the
+    ``HELD_OUT_PER_CATEGORY`` of lowest hash in each category."""
+    check_choice("sampler", sampler, SAMPLERS)
+    out = {}
+    for category in catalog.categories:
+        members = catalog.of_category(category)
+        if is_held_out_category(category):
+            out.update((i.uuid, "unseen_category") for i in members)
+            continue
+        ranked = sorted(members, key=lambda i: stable_hash(f"instance/{i.uuid}"))
+        held = (
+            {i.uuid for i in members if i.held_out}
+            if sampler == 1
+            else {i.uuid for i in ranked[:HELD_OUT_PER_CATEGORY]}
+        )
+        out.update((i.uuid, "unseen_instance" if i.uuid in held else "seen") for i in members)
+    return out
 
 
-def split_pools(catalog: Catalog, split: str) -> tuple[list[Instance], list[Instance]]:
-    """(target pool, distractor pool) of ``split``.
+def split_of(inst: Instance, catalog: Catalog, sampler: int = SAMPLER) -> str:
+    """The partition ``inst`` of ``catalog`` belongs to under ``sampler``."""
+    return partition(catalog, sampler)[inst.uuid]
+
+
+def split_pools(
+    catalog: Catalog, split: str, sampler: int = SAMPLER
+) -> tuple[list[Instance], list[Instance]]:
+    """(the split's partition, the seen partition) of ``catalog`` under ``sampler``.
 
     train / seen: seen instances (seen differs from train by its held-out episode seeds).
-    unseen_instance / unseen_category: targets from that partition. Distractors always come
-    from the seen partition.
+    unseen_instance / unseen_category: that partition. Sampler 1 drew the target from the
+    first and its rivals from the second; sampler 2 draws every candidate from the first.
     """
     check_choice("split", split, SPLITS)
-    seen = [i for i in catalog.instances if split_of(i) == "seen"]
+    parts = partition(catalog, sampler)
+    seen = [i for i in catalog.instances if parts[i.uuid] == "seen"]
     if split in ("train", "seen"):
         return seen, seen
-    return [i for i in catalog.instances if split_of(i) == split], seen
+    return [i for i in catalog.instances if parts[i.uuid] == split], seen
 
 
 def _values(inst: Instance, attribute: str) -> frozenset:
@@ -124,11 +170,15 @@ def _holds(relation: str, attribute: str, mine: frozenset, theirs: frozenset) ->
 
 
 def _satisfies(inst: Instance, c: Constraint, others: list[Instance]) -> bool:
-    if c.attribute == "extent":  # mine must be smaller (larger) than every other's
-        ratio = EXTENT_RATIO if c.relation == "larger" else 1.0 / EXTENT_RATIO
-        return all(
-            (max(inst.dims) >= ratio * max(o.dims)) == (c.relation == "larger") for o in others
-        )
+    if c.attribute == "extent":  # mine must be smaller (larger, either) than every other's
+        mine = max(inst.dims)
+
+        def apart(other: Instance) -> bool:
+            larger = mine >= EXTENT_RATIO * max(other.dims)
+            smaller = not mine >= (1.0 / EXTENT_RATIO) * max(other.dims)
+            return {"larger": larger, "smaller": smaller, "differ": larger or smaller}[c.relation]
+
+        return all(apart(o) for o in others)
     mine = _values(inst, c.attribute)
     return all(_holds(c.relation, c.attribute, mine, _values(o, c.attribute)) for o in others)
 
@@ -148,8 +198,8 @@ def rank(seed: int, role: str, slot: int, uuid: str) -> int:
     return int.from_bytes(digest, "little")
 
 
-def _pools(catalog: Catalog, split: str) -> dict[str, list[Instance]]:
-    targets, seen = split_pools(catalog, split)
+def _pools(catalog: Catalog, split: str, sampler: int) -> dict[str, list[Instance]]:
+    targets, seen = split_pools(catalog, split, sampler)
     known = {i.uuid for i in targets}
     return {
         "target": targets,
@@ -190,10 +240,15 @@ def _fill(
 
 
 def resolve_roles(
-    roles: tuple[RoleSpec, ...], catalog: Catalog, split: str, seed: int
+    roles: tuple[RoleSpec, ...],
+    catalog: Catalog,
+    split: str,
+    seed: int | str,
+    sampler: int = SAMPLER,
 ) -> dict[str, list[Instance]]:
-    """Assign instances to every role, in order; the same inputs give the same assignment."""
-    pools = _pools(catalog, split)
+    """Assign instances to every role, in order, from ``sampler``'s partition of ``split``;
+    the same inputs give the same assignment."""
+    pools = _pools(catalog, split, sampler)
     where = f"snapshot {catalog.name!r}, split {split!r}"
     assigned: dict[str, list[Instance]] = {}
     used: set[str] = set()
@@ -211,12 +266,43 @@ def more_members(
     catalog: Catalog,
     split: str,
     seed: int | str,
+    sampler: int = SAMPLER,
 ) -> list[Instance]:
     """``count`` more members of ``role`` for a scene already cast as ``assigned``, under
     the role's constraints (a ``RoleError`` where none qualifies)."""
     used = {i.uuid for group in assigned.values() for i in group}
-    pool = [i for i in _pools(catalog, split)[role.pool] if _fits(i, role) and i.uuid not in used]
+    pools = _pools(catalog, split, sampler)
+    pool = [i for i in pools[role.pool] if _fits(i, role) and i.uuid not in used]
     members = assigned.get(role.name, [])
     where = f"snapshot {catalog.name!r}, split {split!r}"
     slots = range(len(members), len(members) + count)
     return _fill(role, pool, assigned, members, slots, seed, where)[len(members) :]
+
+
+def symmetric(roles: tuple[RoleSpec, ...], goal: str, rival: str) -> tuple[RoleSpec, ...]:
+    """``roles`` with role ``rival`` folded into role ``goal``: one group of both counts,
+    drawn from ``goal``'s pool, whose members satisfy ``goal``'s constraints and, towards
+    each other, what ``rival``'s asked towards ``goal`` ("differ from the target" becomes
+    "differ from each other"; "smaller than the target" becomes "differ in size"). Sampler 2
+    casts a goal and its rivals so, then picks the goal among the group. Unchanged where
+    ``roles`` has no ``rival``."""
+    by_name = {r.name: r for r in roles}
+    if rival not in by_name:
+        return roles
+    first, second = by_name[goal], by_name[rival]
+    if (first.require, first.max_footprint, first.min_interior) != (
+        second.require,
+        second.max_footprint,
+        second.min_interior,
+    ):
+        raise ValueError(f"roles {goal!r} and {rival!r} ask different things of an instance")
+
+    def mutual(c: Constraint) -> Constraint:
+        if c.other != goal:
+            return c
+        relation = "differ" if c.relation in ("smaller", "larger") else c.relation
+        return Constraint(c.attribute, relation, EACH_OTHER)
+
+    constraints = tuple(dict.fromkeys(first.constraints + tuple(map(mutual, second.constraints))))
+    group = dataclasses.replace(first, count=first.count + second.count, constraints=constraints)
+    return tuple(group if r.name == goal else r for r in roles if r.name != rival)

@@ -34,6 +34,7 @@ from instructmove_ms.episode import CONDITIONS, EpisodeSpec, actor_name
 from instructmove_ms.family import TaskSpec
 from instructmove_ms.gpu_physics import check_gpu_physics, uses_gpu_physics
 from instructmove_ms.perturbation import Context, parse_levels, perturb
+from instructmove_ms.sampler import SAMPLER, SAMPLERS
 from instructmove_ms.splits import SPLITS
 from instructmove_ms.validation import check_choice, check_range
 from instructmove_ms.verify import certify, verify
@@ -69,6 +70,7 @@ class InstructMoveEnv(BaseEnv):
         snapshot: str = DEFAULT_SNAPSHOT,
         condition: str = "normal",
         perturbation: dict | str | None = None,
+        sampler: int = SAMPLER,
         **kwargs,
     ):
         robot_uids = robot_uids or self.task.default_robot
@@ -77,12 +79,14 @@ class InstructMoveEnv(BaseEnv):
             check_gpu_physics()  # before SAPIEN reaches for the network
         check_choice("split", split, SPLITS)
         check_choice("condition", condition, CONDITIONS)
+        check_choice("sampler", sampler, SAMPLERS)
         if num_distractors is None:
             num_distractors = self.task.role("distractor").count
         check_range("num_distractors", num_distractors, *self.task.count_limits["distractor"])
         if not robot_init_qpos_noise >= 0:
             raise ValueError(f"robot_init_qpos_noise must be >= 0, got {robot_init_qpos_noise!r}")
         self.split = split
+        self.sampler = sampler
         self.condition = condition
         self.perturbation = parse_levels(perturbation)
         self.num_distractors = num_distractors
@@ -179,6 +183,7 @@ class InstructMoveEnv(BaseEnv):
             self.certified,
             condition or self.condition,
             self.agent.workspace,
+            self.sampler,
         )
         return self.perturbed(spec, self.perturbation if perturbation is None else perturbation)
 

@@ -31,7 +31,7 @@ from instructmove_ms.sampler import (
 )
 
 from .base import InstructMoveEnv
-from .pick_category import PICK_STAGES, PICK_TEMPLATES
+from .pick_category import PICK_STAGES, PICK_TEMPLATES, RETIRED_PICK_TEMPLATES
 
 
 def _sets_apart(attribute: str, inst: Instance, others: Sequence[Instance]) -> bool:
@@ -73,6 +73,21 @@ class AttributeCue(Cue):
     the colour the camera shows of it."""
 
     attributes: tuple[str, ...] = ("color", "size", "shape", "material")
+    #: Attributes the symmetric sampler tells apart between two candidates: the library
+    #: seldom holds three instances of a category whose materials, shapes or sizes all
+    #: differ, and a third candidate sharing a value would leave the target the odd one out.
+    paired: tuple[str, ...] = ("size", "shape", "material")
+
+    def group_size(self, cue: dict, count: int) -> int:
+        return min(count, 2) if cue["attribute"] in self.paired else count
+
+    def singles_out(self, cue: dict, group: Sequence[Instance]) -> list[int]:
+        """Every member for colour, material and shape (their values all differ); for size
+        the member the drawn direction names (the larger or the smaller of two)."""
+        if cue["attribute"] != "size":
+            return list(range(len(group)))
+        pick = max if cue["direction"] == "larger" else min
+        return [pick(range(len(group)), key=lambda k: max(group[k].dims))]
 
     def draw(self, rng: np.random.Generator, roles: tuple[RoleSpec, ...]):
         attribute = self.attributes[int(rng.integers(len(self.attributes)))]
@@ -110,9 +125,7 @@ class AttributeCue(Cue):
         if attribute == "material" and not _sets_apart("material", target, assigned["distractor"]):
             raise RoleError(f"{target.category}: materials that render alike")
 
-    def phrase(
-        self, rng: np.random.Generator, cue: dict, members: Members, goal: int, split: str
-    ) -> str:
+    def phrase(self, rng, cue: dict, members: Members, goal: int, split: str, sampler: int) -> str:
         options = attribute_phrases(members[goal][0], cue["attribute"], cue.get("direction", ""))
         return options[int(rng.integers(len(options)))]
 
@@ -183,6 +196,7 @@ PICK_ATTRIBUTE = TaskSpec(
     ),
     count_limits={"distractor": (1, 3)},
     templates=PICK_TEMPLATES,
+    retired_templates=RETIRED_PICK_TEMPLATES,
 )
 
 

@@ -17,6 +17,7 @@ from instructmove_ms.relations import (
     OPPOSITE,
     PHRASES,
     RELATIONS,
+    RETIRED_PHRASES,
     bearing,
     holds,
     unique_holder,
@@ -24,7 +25,7 @@ from instructmove_ms.relations import (
 from instructmove_ms.sampler import Constraint, RoleSpec
 
 from .base import InstructMoveEnv
-from .pick_category import PICK_STAGES, RELATION_TEMPLATES
+from .pick_category import PICK_STAGES, RELATION_TEMPLATES, RETIRED_PICK_TEMPLATES
 
 
 @dataclass(frozen=True)
@@ -55,11 +56,11 @@ class RelationCue(Cue):
 
         return order, accept, {**cue, "reference": ref}
 
-    def phrase(
-        self, rng: np.random.Generator, cue: dict, members: Members, goal: int, split: str
-    ) -> str:
+    def phrase(self, rng, cue: dict, members: Members, goal: int, split: str, sampler: int) -> str:
         inst, ref = members[goal][0], members[cue["reference"]][0]
         options = PHRASES[cue["relation"]]
+        if sampler != 1:
+            options = tuple(p for p in options if p not in RETIRED_PHRASES)
         relation = options[int(rng.integers(len(options)))]
         return f"{noun(rng, inst)} {relation} the {noun(rng, ref)}"
 
@@ -112,6 +113,7 @@ PICK_SPATIAL = TaskSpec(
     ),
     count_limits={"distractor": (1, 1)},
     templates=RELATION_TEMPLATES,
+    retired_templates=RETIRED_PICK_TEMPLATES,
 )
 
 

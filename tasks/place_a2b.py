@@ -67,6 +67,8 @@ PLACE_A2B = TaskSpec(
         "could you place the {target} {at} the {destination}?",
         "please put the {target} {at} the {destination}",
     ),
+    # "move the comb into the waste bin" reads oddly; InstructMove 1.0's sampler still says it
+    retired_templates=("move the {target} {prep} the {destination}",),
     # Longer than the pick families' 300: a dual-arm rig may relay the object between its
     # arms to reach a receptacle on the far side.
     max_episode_steps=500,

@@ -13,14 +13,14 @@ from instructmove_ms import audit
 from instructmove_ms.assets import load_snapshot
 from instructmove_ms.audit import learned
 from instructmove_ms.audit.choices import choices_of
-from instructmove_ms.audit.scenes import stored_choices
+from instructmove_ms.audit.scenes import choices, stored_specs
 from instructmove_ms.cli import main
 from instructmove_ms.heldout import load_set
 
 
 @pytest.fixture(scope="module")
 def v7():
-    return stored_choices(7)
+    return choices(stored_specs(7))
 
 
 def _failed(cells) -> set[tuple[str, str, str]]:

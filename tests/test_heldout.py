@@ -14,6 +14,7 @@ from instructmove_ms import heldout
 from instructmove_ms.assets import load_snapshot
 from instructmove_ms.cli import main
 from instructmove_ms.episode import SPEC_VERSION
+from instructmove_ms.sampler import SAMPLER
 from instructmove_ms.splits import EVAL_SEED_BASE, EVAL_SPLITS, eval_seed
 from instructmove_ms.tasks import FAMILIES, TASKS, visibility
 from instructmove_ms.tasks.visibility import hidden_objects
@@ -42,7 +43,12 @@ def test_every_set_is_complete_valid_and_regenerates(env_id, robot):
             assert watched == visibility.watched(spec)
             assert set(spec.candidates) | set(spec.destinations) <= set(watched)
         env = gym.make(
-            env_id, robot_uids=robot, split=split, obs_mode="state", render_backend="none"
+            env_id,
+            robot_uids=robot,
+            split=split,
+            sampler=specs[0].sampler,
+            obs_mode="state",
+            render_backend="none",
         )
         for spec in specs[:3]:  # the stored specs are what the code samples for their seeds
             sampled = env.unwrapped.sample_episode(spec.seed)
@@ -111,6 +117,17 @@ def test_the_package_holds_one_benchmark_version():
     stored = sorted(p.name for p in heldout.default_folder().parent.iterdir() if p.is_dir())
     assert stored == [f"v{heldout.SET_VERSION}"] and heldout.SET_VERSIONS == (7,)
     assert heldout.benchmark_name() == "InstructMove 1.0 (held-out sets v7)"
+
+
+def test_envs_draw_by_default_with_the_sampler_of_the_current_sets():
+    """Training scenes hold out what the current sets test: the envs' default sampler is
+    the one every stored episode of the current version came from."""
+    env_id = "PickCategory-InstructMove"
+    specs = heldout.load_set(env_id, TASKS[env_id].default_robot, "unseen_instance")
+    assert {s.sampler for s in specs} == {SAMPLER}
+    env = gym.make(env_id, obs_mode="state", render_backend="none")
+    assert env.unwrapped.sampler == SAMPLER
+    env.close()
 
 
 def test_a_released_version_stays_loadable_beside_a_newer_one(future_set_version, tmp_path, capsys):

@@ -44,7 +44,7 @@ class MaterialCue(Cue):
             if attribute_word(inst, "material") is None:
                 raise RoleError(f"no word for the material of {inst.category}")
 
-    def phrase(self, rng, cue: dict, members: Members, goal: int, split: str) -> str:
+    def phrase(self, rng, cue: dict, members: Members, goal: int, split: str, sampler: int) -> str:
         inst = members[goal][0]
         return f"{attribute_word(inst, 'material')} {noun(rng, inst)}"
 

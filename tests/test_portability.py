@@ -24,6 +24,7 @@ from instructmove_ms.assets.catalog import Instance, generate_instance
 from instructmove_ms.assets.identity import content_hash
 from instructmove_ms.assets.parts import Part
 from instructmove_ms.heldout import load_set
+from instructmove_ms.sampler import SAMPLERS
 from instructmove_ms.splits import EVAL_SPLITS
 from instructmove_ms.tasks import FAMILIES, TASKS
 from instructmove_ms.verify import certificate, verify
@@ -184,8 +185,10 @@ def test_training_seeds_compose_the_recorded_episodes(case):
     from instructmove_ms.episode import CONDITIONS
 
     reference = json.loads(SAMPLED.read_text())[case]
-    env_id, robot = case.split("/")
-    env = gym.make(env_id, robot_uids=robot, obs_mode="state", render_backend="none")
+    env_id, robot, sampler = case.split("/")
+    env = gym.make(
+        env_id, robot_uids=robot, sampler=int(sampler), obs_mode="state", render_backend="none"
+    )
     draws = [(s, "normal") for s in (0, 1, 2)] + [(0, c) for c in CONDITIONS if c != "normal"]
     got = [env.unwrapped.sample_episode(seed, cond).to_dict() for seed, cond in draws]
     env.close()
@@ -194,5 +197,5 @@ def test_training_seeds_compose_the_recorded_episodes(case):
 
 def test_every_family_is_in_the_sampled_reference():
     cases = set(json.loads(SAMPLED.read_text()))
-    assert cases == {f"{e}/{r}" for e in TASKS for r in ROBOTS}
+    assert cases == {f"{e}/{r}/{s}" for e in TASKS for r in ROBOTS for s in SAMPLERS}
     assert {TASKS[c.split("/")[0]].family for c in cases} == set(FAMILIES)

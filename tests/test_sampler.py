@@ -2,17 +2,23 @@
 
 from __future__ import annotations
 
+from collections import Counter
+
 import pytest
 
 from instructmove_ms.assets import load_snapshot
 from instructmove_ms.assets.catalog import Catalog, generate_instance
 from instructmove_ms.sampler import (
+    EACH_OTHER,
+    HELD_OUT_PER_CATEGORY,
+    SAMPLERS,
     Constraint,
     RoleError,
     RoleSpec,
     resolve_roles,
     split_of,
     split_pools,
+    symmetric,
 )
 from instructmove_ms.tasks import PICK_CATEGORY
 
@@ -66,17 +72,46 @@ def test_adding_assets_does_not_change_existing_assignments():
     assert all(resolve_roles(roles, reordered, "unseen_category", s) == before[s] for s in before)
 
 
-def test_splits_partition_the_snapshot():
+@pytest.mark.parametrize("sampler", SAMPLERS)
+def test_splits_partition_the_snapshot(sampler):
     catalog = load_snapshot()
     parts = {"seen": set(), "unseen_instance": set(), "unseen_category": set()}
     for inst in catalog.instances:
-        parts[split_of(inst)].add(inst.uuid)
+        parts[split_of(inst, catalog, sampler)].add(inst.uuid)
     assert sum(map(len, parts.values())) == len(catalog)
     seen_categories = {catalog[u].category for u in parts["seen"]}
     assert not seen_categories & {catalog[u].category for u in parts["unseen_category"]}
-    targets, distractors = split_pools(catalog, "unseen_instance")
+    targets, seen = split_pools(catalog, "unseen_instance", sampler)
     assert {i.uuid for i in targets} == parts["unseen_instance"]
-    assert {i.uuid for i in distractors} == parts["seen"]
+    assert {i.uuid for i in seen} == parts["seen"]
+    held = Counter(catalog[u].category for u in parts["unseen_instance"])
+    if sampler == 1:  # about one instance in five, by a hash of its own
+        held_out = {i.uuid for i in catalog.instances if i.held_out}
+        assert {i.uuid for i in targets} == held_out - parts["unseen_category"]
+    else:  # the same number of every seen category
+        assert set(held.values()) == {HELD_OUT_PER_CATEGORY}
+        assert set(held) == seen_categories
+
+
+def test_symmetric_folds_rivals_into_the_goal_group():
+    roles = PICK_CATEGORY.roles
+    (group,) = symmetric(roles, "target", "distractor")
+    assert (group.name, group.count, group.pool) == ("target", 6, "target")
+    assert set(group.constraints) == {
+        Constraint("category", "differ", EACH_OTHER),
+        Constraint("name", "differ", EACH_OTHER),
+    }
+    sized = (
+        roles[0],
+        RoleSpec("distractor", 1, constraints=(Constraint("extent", "smaller", "target"),)),
+    )
+    assert symmetric(sized, "target", "distractor")[0].constraints == (
+        Constraint("extent", "differ", EACH_OTHER),
+    )
+    assert symmetric(roles, "destination", "distractor_destination") == roles
+    uneven = (roles[0], RoleSpec("distractor", 1, require=()))
+    with pytest.raises(ValueError, match="ask different things"):
+        symmetric(uneven, "target", "distractor")
 
 
 def test_unsatisfiable_role_names_the_constraint_and_pool():

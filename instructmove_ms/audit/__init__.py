@@ -13,11 +13,13 @@ from collections import defaultdict
 from collections.abc import Sequence
 from pathlib import Path
 
-from ..heldout import SET_VERSION, benchmark_name
+from ..heldout import benchmark_name
+from ..sampler import SAMPLERS
 from ..tasks import TASKS
+from ..validation import check_choice
 from . import report, rules
 from .choices import Choice
-from .scenes import fresh_choices, stored_choices, training_choices
+from .scenes import choices, fresh_choices, sampler_of, stored_specs, training_choices
 from .stats import Cell, cells
 
 __all__ = ["run", "judge"]
@@ -64,8 +66,8 @@ def judge(
     (cross-validated within the choices judged, and trained on ``training``)."""
     taught = _groups(training)
     found: list[Cell] = []
-    for source, choices in (("stored", stored), ("fresh", fresh)):
-        for key, group in _groups(choices).items():
+    for source, judged in (("stored", stored), ("fresh", fresh)):
+        for key, group in _groups(judged).items():
             found += _adversaries(group, taught.get(key), trees, source)
     on_training = [
         c
@@ -83,22 +85,33 @@ def run(
     training_scenes: int = TRAINING_SCENES,
     fresh_scenes: int = 0,
     progress: bool = True,
+    sampler: int | None = None,
 ) -> tuple[list[Cell], list[Path]]:
     """Audit the stored sets of ``version`` (or under ``folder``) and, with ``fresh_scenes``,
-    that many fresh scenes per family and split; write the report under ``out``; returns
-    the cells and the files written."""
+    that many fresh scenes per family and split, training and fresh scenes drawn by the
+    sampler that drew the sets; with ``sampler`` instead, audit that sampler's fresh scenes
+    alone. Write the report under ``out``; returns the cells and the files written."""
     for what, count in (("training scenes", training_scenes), ("fresh scenes", fresh_scenes)):
         if count < 0:
             raise ValueError(f"{what} must be 0 or more, got {count}")
-    stored = stored_choices(version, folder)
+    if sampler is None:
+        specs = stored_specs(version, folder)
+        sampler, sets = sampler_of(specs), str(folder) if folder else benchmark_name(version)
+    else:
+        check_choice("sampler", sampler, SAMPLERS)
+        if fresh_scenes < 1:
+            raise ValueError("auditing a sampler alone needs fresh scenes (--fresh-scenes N)")
+        specs, sets = [], f"none: sampler {sampler}'s fresh scenes alone"
+    stored = choices(specs)
     training: list[Choice] = []
     fresh: list[Choice] = []
     for env_id in TASKS:
-        training += training_choices(env_id, training_scenes, progress)
-        fresh += fresh_choices(env_id, fresh_scenes, progress)
+        training += training_choices(env_id, training_scenes, sampler, progress)
+        fresh += fresh_choices(env_id, fresh_scenes, sampler, progress)
     found, on_training = judge(stored, training, fresh=fresh)
     about = {
-        "sets": str(folder) if folder else benchmark_name(version or SET_VERSION),
+        "sets": sets,
+        "sampler": sampler,
         "episodes": len({(c.family, c.split, c.robot, c.seed) for c in stored}),
         "training scenes per family": training_scenes,
         "fresh scenes per family and split": fresh_scenes,

@@ -119,7 +119,7 @@ def option_of(spec: EpisodeSpec, catalog: Catalog, k: int) -> Option:
         **_layout_numbers(spec, k),
         **_visibility_numbers(spec, k),
     }
-    return Option(values, numbers, novel=split_of(inst) != "seen")
+    return Option(values, numbers, novel=split_of(inst, catalog, spec.sampler) != "seen")
 
 
 def choices_of(spec: EpisodeSpec, catalog: Catalog) -> list[Choice]:

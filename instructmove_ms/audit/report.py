@@ -127,8 +127,9 @@ def write(out: Path, about: dict, cells: list[Cell], training: list[Cell]) -> li
         write_text(out / "report.md", markdown(about, cells, training)),
     ]
     by_family: dict[str, list[Cell]] = defaultdict(list)
+    plotted = "stored" if any(c.source == "stored" for c in cells) else "fresh"
     for c in cells:
-        if c.source == "stored":
+        if c.source == plotted:
             by_family[_label(c)].append(c)
     for family, group in by_family.items():
         name = family.replace(" ", "_").replace("(", "").replace(")", "")

@@ -9,19 +9,23 @@ import sys
 from instructmove_ms.cli.common import _add_group
 
 
-def _assets(args: argparse.Namespace) -> list:
+def _assets(args: argparse.Namespace):
+    """(the snapshot, its instances of the asked category or all)."""
     from instructmove_ms.assets import load_snapshot
 
     catalog = load_snapshot(args.snapshot)
-    return [i for i in catalog.instances if not args.category or i.category == args.category]
+    return catalog, [
+        i for i in catalog.instances if not args.category or i.category == args.category
+    ]
 
 
 def _cmd_assets_list(args: argparse.Namespace) -> int:
     from instructmove_ms.assets.annotations import annotate
     from instructmove_ms.sampler import split_of
 
-    for inst in _assets(args):
-        record = annotate(inst, split_of(inst))
+    catalog, instances = _assets(args)
+    for inst in instances:
+        record = annotate(inst, split_of(inst, catalog))
         if args.format == "jsonl":
             print(json.dumps(record))
         else:

@@ -12,7 +12,12 @@ def _cmd_audit(args: argparse.Namespace) -> int:
 
     folder = Path(args.sets) if args.sets else None
     cells, paths = audit.run(
-        Path(args.out), args.set_version, folder, args.training_scenes, args.fresh_scenes
+        Path(args.out),
+        args.set_version,
+        folder,
+        args.training_scenes,
+        args.fresh_scenes,
+        sampler=args.sampler,
     )
     failed = [c for c in cells if c.failed]
     for c in sorted(failed, key=lambda c: -c.z):
@@ -28,6 +33,7 @@ def _cmd_audit(args: argparse.Namespace) -> int:
 def add_parsers(sub: argparse._SubParsersAction) -> None:
     from instructmove_ms.audit import TRAINING_SCENES
     from instructmove_ms.cli.common import _add_set_version
+    from instructmove_ms.sampler import SAMPLERS
 
     p = sub.add_parser(
         "audit",
@@ -50,5 +56,12 @@ def add_parsers(sub: argparse._SubParsersAction) -> None:
         default=0,
         help="also judge the sampler on this many fresh evaluation scenes per family and split "
         "(seeds no stored set reaches; default 0)",
+    )
+    p.add_argument(
+        "--sampler",
+        type=int,
+        choices=SAMPLERS,
+        help="audit this sampler's fresh scenes alone, no stored sets (with --fresh-scenes; "
+        "1 is InstructMove 1.0's, 2 the symmetric one)",
     )
     p.set_defaults(func=_cmd_audit)

@@ -24,7 +24,13 @@ def _cmd_episodes_write(args: argparse.Namespace) -> int:
     for env_id in tasks:
         for robot in [args.robot] if args.robot else TASKS[env_id].supported_robots:
             for split in EVAL_SPLITS:
-                env = gym.make(env_id, robot_uids=robot, split=split, obs_mode="state")
+                path = heldout.set_path(env_id, robot, split, out)
+                if path.is_file() and len(heldout.load_set(env_id, robot, split, out)) == args.n:
+                    tqdm.write(f"kept {path} (written before)")
+                    continue
+                env = gym.make(
+                    env_id, robot_uids=robot, split=split, sampler=args.sampler, obs_mode="state"
+                )
                 measured = (
                     heldout.load_set(env_id, robot, split, version=args.measured_in)
                     if args.measured_in
@@ -39,7 +45,7 @@ def _cmd_episodes_write(args: argparse.Namespace) -> int:
                     )
                 )
                 env.close()
-                path = heldout.write_set(heldout.set_path(env_id, robot, split, out), specs)
+                path = heldout.write_set(path, specs)
                 tqdm.write(f"{len(specs)} episodes -> {path}")
     heldout.write_checksums(out)
     return 0
@@ -82,7 +88,12 @@ def add_parsers(sub: argparse._SubParsersAction) -> None:
     from instructmove_ms.heldout import SET_VERSIONS
 
     episodes_sub = _add_group(sub, "episodes", "held-out evaluation episode sets")
-    p = episodes_sub.add_parser("write", help="sample and store the held-out sets")
+    from instructmove_ms.sampler import NEWEST_SAMPLER, SAMPLERS
+
+    p = episodes_sub.add_parser(
+        "write",
+        help="sample and store the held-out sets (a complete set file is kept: rerun to resume)",
+    )
     p.add_argument("--task", default=None, help="one env id (default: every family)")
     p.add_argument("--robot", default=None, help="one robot (default: every supported one)")
     p.add_argument("--n", type=int, default=100, help="episodes per set")
@@ -99,6 +110,14 @@ def add_parsers(sub: argparse._SubParsersAction) -> None:
         choices=SET_VERSIONS,
         help="a stored set version whose visibility figures are reused for the same scenes "
         "(only new scenes are rendered)",
+    )
+    p.add_argument(
+        "--sampler",
+        type=int,
+        default=NEWEST_SAMPLER,
+        choices=SAMPLERS,
+        help=f"the sampler that draws the scenes (default {NEWEST_SAMPLER}, the symmetric one; "
+        "1 is InstructMove 1.0's)",
     )
     p.set_defaults(func=_cmd_episodes_write)
     p = episodes_sub.add_parser("show", help="print one stored held-out episode spec")
