@@ -27,6 +27,10 @@ def main() -> None:
     parser.add_argument("--split", default="seen")
     parser.add_argument("--robot", default=None, help="one robot (default: each family's)")
     parser.add_argument("--task", default=None, help="one env id (default: every family)")
+    parser.add_argument("--workers", type=int, default=1, help="local worker processes")
+    parser.add_argument(
+        "--set-version", type=int, default=None, help="stored sets (default: the current ones)"
+    )
     args = parser.parse_args()
     runs: dict[str, list[dict]] = {name: [] for name in POLICIES}
     with tempfile.TemporaryDirectory() as tmp:
@@ -35,7 +39,16 @@ def main() -> None:
                 out = Path(tmp) / task / name
                 policy = REFERENCE_POLICIES[name]()
                 n = args.episodes
-                summary = evaluate(policy, task, args.split, out, args.robot, episodes=n)
+                summary = evaluate(
+                    policy,
+                    task,
+                    args.split,
+                    out,
+                    args.robot,
+                    episodes=n,
+                    workers=args.workers,
+                    version=args.set_version,
+                )
                 runs[name] += summary["groups"]
     print(comparison_table(runs))
 

@@ -361,9 +361,10 @@ def evaluate(
     sim_backend: str = "auto",
     video: VideoSettings | None = None,
     workers: Workers | int = 1,
+    version: int | None = None,
 ) -> dict:
-    """Run ``policy`` on the held-out set of (env, robot, split) under ``condition`` (the
-    first ``episodes`` of it, all by default)."""
+    """Run ``policy`` on the held-out set of (env, robot, split) of ``version`` (default: the
+    current one) under ``condition`` (the first ``episodes`` of it, all by default)."""
     check_backend(num_envs, sim_backend, Workers.of(workers).ray is not None)
-    config = heldout.evaluator_config(env_id, robot, split, condition, episodes)
+    config = heldout.evaluator_config(env_id, robot, split, condition, episodes, version=version)
     return evaluate_config(policy, config, out, num_envs, sim_backend, video, workers)

@@ -85,3 +85,18 @@ def test_language_blind_rules_find_nothing_in_sampler_two_scenes():
     pooled = [c for c in cells if c.split == "pooled" and c.robot == "pooled"]
     worst = max(pooled, key=lambda c: c.accuracy - c.chance)
     assert worst.accuracy - worst.chance < 0.15, worst
+
+
+def _says_retired(text: str) -> bool:
+    return "side of" in text or text.startswith(("lift the", "move the"))
+
+
+def test_sampler_two_drops_the_wording_readers_found_odd():
+    """ "on the right side of the chopping board" (lying on it?), "lift the comb", "move the
+    pear into the waste bin": sampler 1 still says them, sampler 2 never."""
+    said = {1: 0, 2: 0}
+    for env_id in TASKS:
+        for sampler in (1, 2):
+            texts = [s.instruction for s in _specs(env_id, "train", sampler, range(30))]
+            said[sampler] += sum(map(_says_retired, texts))
+    assert said[1] > 0 and said[2] == 0
