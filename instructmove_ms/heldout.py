@@ -4,10 +4,12 @@ Evaluation seeds come from ``splits.eval_seed`` (training data and demos use see
 ``splits.EVAL_SEED_BASE``, so the two never share an episode). The sets ship with the
 package under ``tasks/episodes/v<version>/<env id>/<robot>/<split>.jsonl``. Each released
 benchmark version is one set version (``BENCHMARKS``): InstructMove 1.0 is set version 7,
-played on the ``recognisable`` snapshot and said as people say it (``assets.expressions``).
-Each episode names its snapshot, and an env builds it from that one. A later benchmark
-version adds its sets beside these, which stay loadable (``--set-version``); the
-pre-release versions 2-6 are in the repository's history (``git checkout ee264ad``).
+drawn by sampler 1; InstructMove 2.0 is set version 8, drawn by the symmetric sampler (2,
+``sampler``), the default. Both play on the ``recognisable`` snapshot, said as people say it
+(``assets.expressions``). Each episode names its snapshot and its sampler, and an env builds
+it from that snapshot. A later benchmark version adds its sets beside these, which stay
+loadable (``--set-version``); the pre-release versions 2-6 are in the repository's history
+(``git checkout ee264ad``).
 
 A set also exports as a config of ManiSkill's evaluator convention: ``env_info`` (``env_id``,
 ``max_episode_steps``, ``env_kwargs``) and ``episodes`` of ``{episode_id, reset_kwargs}``,
@@ -39,7 +41,7 @@ from .verify import verify
 
 EPISODES_PER_SET = 100
 #: Each released benchmark version, by the stored set version that makes it.
-BENCHMARKS = {7: "1.0"}
+BENCHMARKS = {7: "1.0", 8: "2.0"}
 #: The stored set versions (``--set-version``) and the one evaluation uses by default.
 SET_VERSIONS = tuple(BENCHMARKS)
 SET_VERSION = max(SET_VERSIONS)

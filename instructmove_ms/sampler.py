@@ -35,12 +35,10 @@ EACH_OTHER = "each_other"
 POOLS = ("target", "distractor", "any")
 #: The samplers an episode may come from: 1 is InstructMove 1.0's, 2 the symmetric one.
 SAMPLERS = (1, 2)
-#: The envs' default: the sampler of the current benchmark's stored sets, so that training
-#: scenes hold out what those sets test (a test checks the two agree). Sampler 2 becomes
-#: the default with the sets it draws.
-SAMPLER = 1
-#: The sampler new held-out sets are drawn with (``episodes write``).
-NEWEST_SAMPLER = max(SAMPLERS)
+#: The envs' default: the sampler of the current benchmark's stored sets (InstructMove
+#: 2.0's), so that training scenes hold out what those sets test (a test checks the two
+#: agree).
+SAMPLER = 2
 #: Sampler 2 holds out this many instances of each seen category for unseen_instance (those
 #: of lowest hash): PickAttribute needs three of one category, PickSpatial two.
 HELD_OUT_PER_CATEGORY = 4

@@ -100,14 +100,16 @@ want = [
     "instructmove_ms/assets/snapshots/appearance/recognisable.json",
     "instructmove_ms/tasks/episodes/v7/checksums.json",
     "instructmove_ms/tasks/episodes/v7/PickCategory-InstructMove/franka/seen.jsonl",
+    "instructmove_ms/tasks/episodes/v8/checksums.json",
+    "instructmove_ms/tasks/episodes/v8/PlaceA2B-InstructMove/piperx/unseen_category.jsonl",
 ]
 missing = [n for n in want if n not in names]
 if missing:
     sys.exit(f"missing: {missing}")
-# one stored-set version (InstructMove 1.0) and one snapshot ship
+# the stored sets of InstructMove 1.0 (v7) and 2.0 (v8) and one snapshot ship
 sets = {n.split("/")[3] for n in names if n.startswith("instructmove_ms/tasks/episodes/")}
 snapshots = {n for n in names if n.startswith("instructmove_ms/assets/snapshots/")}
-if sets != {"v7"} or len(snapshots) != 2:
+if sets != {"v7", "v8"} or len(snapshots) != 2:
     sys.exit(f"the wheel holds other stored data: sets {sorted(sets)}, {sorted(snapshots)}")
 pth = zipfile.ZipFile(sys.argv[1]).read("instructmove_ms.pth").decode()
 if not pth.startswith("import ") or "instructmove_ms_autoload" not in pth:

@@ -276,6 +276,12 @@ class InstructMoveEnv(BaseEnv):
         self._target_column = self._target.clamp(min=0)[:, None]  # (N, 1) for gathers
         self._target_pair = self._target_column[:, :, None].expand(-1, 2, 1)
         self._has_target = ~self._no_target[:, None]
+        # (N, 1, K): the candidate objects, the only ones whose reach or lift a policy chose
+        # (a receptacle or a reference object touched on the way is no choice)
+        candidates = torch.zeros((self.num_envs, 1, len(self.objects)), dtype=torch.bool)
+        for i, ep in enumerate(self.episodes):
+            candidates[i, 0, list(ep.candidates)] = True
+        self._candidates = candidates.to(self.device)
         self._target_rows = [  # each object that is a target: the sub-scenes where it is
             (k, self._target_column[:, 0] == k)
             for k in sorted({max(ep.target, 0) for ep in self.episodes})
@@ -394,7 +400,7 @@ class InstructMoveEnv(BaseEnv):
         if goal:
             conditions = torch.cat((conditions, torch.stack(goal, dim=1)), dim=1)
         stages = self._stages
-        stages.update(dist, events, rise, conditions)
+        stages.update(dist, events & self._candidates, rise, conditions)
         f, names, first = stages.flags, schema.names, stages.first
         success = names.index(schema.success)
         seen = first >= 0

@@ -45,6 +45,15 @@ def test_rules_find_the_shortcuts_of_sets_v7(v7):
     assert not any(f[:2] == ("pick_spatial", "seen") for f in failed)
 
 
+def test_no_rule_finds_the_target_of_sets_v8():
+    """InstructMove 2.0's stored sets (the symmetric sampler) fail no gated cell of the rules,
+    and novelty sits exactly at chance in every split."""
+    cells = audit.judge(choices(stored_specs(8)), trees=False)[0]
+    assert not _failed(cells)
+    novelty = [c for c in cells if c.adversary == "novelty" and c.robot == "pooled"]
+    assert novelty and all(c.accuracy == pytest.approx(c.chance) for c in novelty)
+
+
 def test_no_rule_fails_where_the_answer_is_drawn_blind(v7):
     draw = random.Random(7)
     blind = _answered(v7, lambda c: draw.randrange(len(c.options)))

@@ -70,10 +70,11 @@ def test_replay_reproduces_success(demos):
 
 
 def test_a_slipped_grasp_is_tried_again_with_the_next_plan(tmp_path):
-    """Seed 33: the cheapest grasp holds a watering can by its handle far from its middle and
-    the can slips out on the lift; the scene is reset and the next grasp plan lifts it. Only
-    that rollout is recorded, so ManiSkill's replay from the seed reproduces it."""
-    report = generate(TASK, ROBOT, 1, tmp_path, seed0=33, shard_size=1)
+    """Seed 33 (InstructMove 1.0's sampler): the cheapest grasp holds a watering can by its
+    handle far from its middle and the can slips out on the lift; the scene is reset and the
+    next grasp plan lifts it. Only that rollout is recorded, so ManiSkill's replay from the
+    seed reproduces it."""
+    report = generate(TASK, ROBOT, 1, tmp_path, seed0=33, shard_size=1, sampler=1)
     assert (report.kept, report.tried, report.rollouts) == (1, 1, 2)
     (entry,) = json.loads((tmp_path / f"{STEM}.episodes.json").read_text())
     assert entry["seed"] == 33 and entry["variant"] == 1

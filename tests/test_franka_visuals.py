@@ -24,6 +24,8 @@ from instructmove_ms.agents.franka import FrankaInstructMove
 
 DATA = Path(__file__).parent / "data"
 PINNED = DATA / "franka_light"
+#: The recorded case's scene is drawn by InstructMove 1.0's sampler.
+RECORDED_SAMPLER = 1
 CASE = json.loads((DATA / "step_reference.json").read_text())["cases"][
     "PickCategory-InstructMove/franka"
 ]
@@ -44,6 +46,7 @@ def views(urdf: str, monkeypatch) -> list[dict[str, tuple[np.ndarray, np.ndarray
     env = gym.make(
         "PickCategory-InstructMove",
         robot_uids="franka",
+        sampler=RECORDED_SAMPLER,
         obs_mode="rgb+segmentation",
         sensor_configs=dict(width=SIZE, height=SIZE),
     )

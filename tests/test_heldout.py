@@ -112,11 +112,13 @@ def test_a_contact_sheet_shows_each_episode_from_the_scene_camera(tmp_path):
     assert (caption < 128).any() and (caption == 255).mean() > 0.6, "dark text on white"
 
 
-def test_the_package_holds_one_benchmark_version():
-    """InstructMove 1.0 is set version 7; no other stored set ships."""
+def test_the_package_holds_benchmarks_1_0_and_2_0():
+    """InstructMove 1.0 is set version 7 (sampler 1), 2.0 set version 8 (the symmetric
+    sampler) and the default; no other stored set ships."""
     stored = sorted(p.name for p in heldout.default_folder().parent.iterdir() if p.is_dir())
-    assert stored == [f"v{heldout.SET_VERSION}"] and heldout.SET_VERSIONS == (7,)
-    assert heldout.benchmark_name() == "InstructMove 1.0 (held-out sets v7)"
+    assert stored == ["v7", "v8"] and heldout.SET_VERSIONS == (7, 8) == (7, heldout.SET_VERSION)
+    assert heldout.benchmark_name(7) == "InstructMove 1.0 (held-out sets v7)"
+    assert heldout.benchmark_name() == "InstructMove 2.0 (held-out sets v8)"
 
 
 def test_envs_draw_by_default_with_the_sampler_of_the_current_sets():
@@ -130,13 +132,14 @@ def test_envs_draw_by_default_with_the_sampler_of_the_current_sets():
     env.close()
 
 
-def test_a_released_version_stays_loadable_beside_a_newer_one(future_set_version, tmp_path, capsys):
-    """Once a newer benchmark version ships, 1.0's sets still load by ``--set-version 7``,
-    through the API and the CLI, and the default is the newer one."""
+def test_a_released_version_stays_loadable_beside_a_newer_one(tmp_path, capsys):
+    """Beside InstructMove 2.0 (sets v8, the default), 1.0's sets still load by
+    ``--set-version 7``, through the API and the CLI."""
     env_id, robot = "PlaceA2B-InstructMove", "franka"
     released = heldout.load_set(env_id, robot, "seen", version=7)
     newer = heldout.load_set(env_id, robot, "seen")
-    assert newer == released[::-1] != released
+    assert newer == heldout.load_set(env_id, robot, "seen", version=8)
+    assert newer != released and {s.sampler for s in newer} == {2}
     assert heldout.benchmark_name(7) == "InstructMove 1.0 (held-out sets v7)"
     assert heldout.benchmark_name() == "InstructMove 2.0 (held-out sets v8)"
     config = heldout.evaluator_config(env_id, robot, "seen", episodes=3, version=7)

@@ -251,7 +251,7 @@ def test_a_plain_env_starts_the_next_episode_at_each_reset_and_wraps_round():
         copied.claim(1000)
 
 
-def test_set_version_picks_the_stored_sets_an_env_plays(future_set_version):
+def test_set_version_picks_the_stored_sets_an_env_plays():
     """Beside a newer benchmark version, ``set_version=7`` plays 1.0's stored episodes (what
     results on 1.0 were measured on), the default the newer version's; a version the
     package does not hold is refused by name."""

@@ -24,7 +24,7 @@ from instructmove_ms.perturbation import (
     parse_levels,
     perturb,
 )
-from instructmove_ms.relations import CONE
+from instructmove_ms.relations import CONE, FAR, NEAR
 from instructmove_ms.tasks import TASKS
 from instructmove_ms.verify import ambiguous_nouns, verify
 
@@ -186,8 +186,12 @@ def _no_unseen_phrase_passes(spec: EpisodeSpec, catalog) -> bool:
 
 def _relation_at_the_edge(spec: EpisodeSpec) -> bool:
     """Whether the goal's relation to the reference holds within a degree of the cone's
-    edge, where nearly every draw that moves all three objects breaks it."""
+    edge, or a near one within 5 mm of ``NEAR`` (a far one of ``FAR``), where nearly every
+    draw that moves all three objects breaks it."""
     (goal,) = [c for c in spec.certificate["candidates"] if c["index"] == spec.target]
+    if goal.get("relation") in ("near", "far from"):
+        edge = NEAR if goal["relation"] == "near" else FAR
+        return abs(goal["distance"] - edge) < 0.005
     return "angle" in goal and goal["angle"] >= CONE - 1.0
 
 
@@ -306,21 +310,24 @@ def test_the_planner_reads_every_perturbed_scene(axis):
 
 def test_added_distractors_stand_in_the_scene_and_keep_one_goal():
     env = gym.make("PickAttribute-InstructMove", robot_uids="franka", obs_mode="state")
-    env.reset(seed=1)  # seed 0 has no further pear whose colour shows apart from all three
+    env.reset(seed=1)  # a scene that takes more candidates
     plain = env.unwrapped.episode
     env.reset(seed=1, options={"perturbation": {"distractors": 3}})
     spec = env.unwrapped.episode
-    (added,) = spec.perturbation["distractors"]["added"]  # the family allows one more
+    added = spec.perturbation["distractors"]["added"]
+    most = 1 + env.unwrapped.task.count_limits["distractor"][1]  # candidates the family allows
+    assert len(added) == most - len(plain.candidates) > 0
     assert spec.objects[: len(plain.objects)] == plain.objects
-    new = spec.objects[-1]
-    assert new.uuid == added and new.role == "distractor"
-    assert spec.candidates == (*plain.candidates, len(plain.objects))
-    assert env.unwrapped.catalog[added].category == spec.target_object.category
+    new = spec.objects[len(plain.objects) :]
+    assert [o.uuid for o in new] == added and {o.role for o in new} == {"distractor"}
+    assert spec.candidates == (*plain.candidates, *range(len(plain.objects), len(spec.objects)))
+    assert {o.category for o in new} == {spec.target_object.category}
     still = torch.cat([env.unwrapped.agent.robot.get_qpos()[0, :7], torch.ones(1)])
-    for _ in range(10):  # the arm holds still; the added object stands where the spec puts it
+    for _ in range(10):  # the arm holds still; the added objects stand where the spec puts them
         env.step(still[None])
-    pos = env.unwrapped.objects[-1].pose.p[0].cpu().numpy()
-    np.testing.assert_allclose(pos[:2], new.pose[:2], atol=0.01)
+    for k, o in enumerate(new, start=len(plain.objects)):
+        pos = env.unwrapped.objects[k].pose.p[0].cpu().numpy()
+        np.testing.assert_allclose(pos[:2], o.pose[:2], atol=0.01)
     opening = env.unwrapped.agent.gripper.max_width
     assert verify(spec, env.unwrapped.catalog, env.unwrapped.task, opening) == []
     env.close()

@@ -1,15 +1,16 @@
 """The reference policies' scores on a fixed slice of the stored sets, compared with a
 recording made on another machine (tests/data/reference_rows.json): the oracle and the
-language-blind policy on the first ``EPISODES`` stored ``seen`` episodes of every family, both
-robots. Both plan from the simulator's state and play in the physics, so another CPU's contact
-physics (see tests/test_step_reference.py) reaches their rows only through a grasp or a place
-that ends otherwise. On the recording CPU every row is equal; on another, at most
-``ALLOWED_ROWS`` of the slice's 32 rows may differ. Nudging every object by one float32 ULP at
-reset, a stand-in for another CPU's last bits, changed none of 160 rows (10 episodes per
-family; ``tests/tools/record_reference_rows.py --ulps 1 --episodes 10``), but between the
-earlier CPU and this one the quickstart's oracle rows changed in 1 of 20 (the PiperX's
-PickAttribute ``seen`` #1, a lift that held there and slips here; it is in this slice). At a
-change rate of 5%, more than 4 of 32 rows change with a chance of 3%.
+language-blind policy on the first ``EPISODES`` stored ``seen`` episodes of every family,
+both robots, on sets v7 (InstructMove 1.0). Both plan from the simulator's state and play in
+the physics, so another CPU's contact physics (see tests/test_step_reference.py) reaches
+their rows only through a grasp or a place that ends otherwise. On the recording CPU every
+row is equal; on another, at most ``ALLOWED_ROWS`` of the slice's 32 rows may differ.
+Nudging every object by one float32 ULP at reset, a stand-in for another CPU's last bits,
+changed none of 160 rows (10 episodes per family; ``tests/tools/record_reference_rows.py
+--ulps 1 --episodes 10``), but between the earlier CPU and this one the quickstart's oracle
+rows changed in 1 of 20 (the PiperX's PickAttribute ``seen`` #1, a lift that held there and
+slips here; it is in this slice). At a change rate of 5%, more than 4 of 32 rows change with
+a chance of 3%.
 
 ``tests/tools/record_reference_rows.py`` records the slice again (when a set, the planner or
 the physics changes)."""
@@ -40,13 +41,18 @@ SCORE = ("stages", "success", "success_at_end", "stage_score", "choice")
 #: Rows of the slice (2 robots x 4 families x 2 policies x ``EPISODES``) another CPU may score
 #: otherwise (see above).
 ALLOWED_ROWS = 4
+#: The stored sets the slice was recorded on (InstructMove 1.0's).
+RECORDED_VERSION = 7
 
 
 def rows(policy: str, task: str, robot: str, episodes: int = EPISODES) -> list[dict]:
     """The score fields of ``instructmove eval``'s rows for ``policy`` on the first
     ``episodes`` stored ``seen`` episodes of ``task`` with ``robot``."""
     with tempfile.TemporaryDirectory() as tmp:
-        evaluate(REFERENCE_POLICIES[policy](), task, "seen", Path(tmp), robot, episodes=episodes)
+        policy_ = REFERENCE_POLICIES[policy]()
+        evaluate(
+            policy_, task, "seen", Path(tmp), robot, episodes=episodes, version=RECORDED_VERSION
+        )
         lines = (Path(tmp) / "episodes.jsonl").read_text().splitlines()
     return [{k: json.loads(line)[k] for k in SCORE} for line in lines]
 

@@ -44,6 +44,8 @@ pytestmark = pytest.mark.portability  # recorded on one machine, checked on ever
 
 RECORDING = json.loads((Path(__file__).parent / "data" / "step_reference.json").read_text())
 REFERENCE: dict[str, dict] = RECORDING["cases"]
+#: The sampler whose training seeds the cases were recorded on (InstructMove 1.0's).
+RECORDED_SAMPLER = 1
 #: Whether this machine's CPU is the one the reference was recorded on (then contact physics
 #: lands the same bits, whatever BLAS or torch kernels run).
 SAME_CPU = RECORDING["recorded_on"]["cpu"] == cpu_model()
@@ -82,7 +84,7 @@ def planned(case: str, folder: Path) -> tuple[int, np.ndarray]:
     """The seed and (steps, action dim) actions of the first demo of ``case`` ("<env
     id>/<robot>") the demo generator keeps, recorded in ``folder``."""
     task, robot = case.split("/")
-    path = generate(task, robot, 1, folder, shard_size=1).path
+    path = generate(task, robot, 1, folder, shard_size=1, sampler=RECORDED_SAMPLER).path
     (episode,) = json.loads(path.with_suffix(".json").read_text())["episodes"]
     with h5py.File(path) as f:
         actions = f[f"traj_{episode['episode_id']}/actions"][()]
@@ -90,11 +92,13 @@ def planned(case: str, folder: Path) -> tuple[int, np.ndarray]:
 
 
 def case_env(case: str, **kwargs) -> gym.Env:
-    """A state env of ``case`` ("<env id>/<robot>") taking ``pd_joint_pos`` actions."""
+    """A state env of ``case`` ("<env id>/<robot>") taking ``pd_joint_pos`` actions, whose
+    seeds compose the recorded scenes (InstructMove 1.0's sampler)."""
     task, robot = case.split("/")
     return gym.make(
         task,
         robot_uids=robot,
+        sampler=RECORDED_SAMPLER,
         obs_mode="state",
         control_mode="pd_joint_pos",
         render_backend="none",

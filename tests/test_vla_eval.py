@@ -101,7 +101,7 @@ def test_benchmark_options_are_checked() -> None:
     assert {"reach_pick", "place", "lift"} <= set(bench.get_metric_keys())
 
 
-def test_a_released_set_version_plays_its_own_stored_episodes(future_set_version) -> None:
+def test_a_released_set_version_plays_its_own_stored_episodes() -> None:
     """Beside a newer benchmark version, ``set_version: 7`` reproduces results on 1.0: its
     tasks are named apart and play 1.0's stored episodes (which differ from the newer
     version's)."""

@@ -45,7 +45,7 @@ def _cmd_assets_check(args: argparse.Namespace) -> int:
 
     from instructmove_ms.assets.quality import check_instances
 
-    instances = _assets(args)
+    _, instances = _assets(args)
     by_category: dict[str, list] = {}
     for inst in instances:
         by_category.setdefault(inst.category, []).append(inst)
@@ -83,11 +83,11 @@ def _cmd_assets_sheet(args: argparse.Namespace) -> int:
     from instructmove_ms.assets.sheet import contact_sheet, recognition_sheet
 
     if args.recognition:
-        for path in recognition_sheet(_assets(args), Path(args.recognition)):
+        for path in recognition_sheet(_assets(args)[1], Path(args.recognition)):
             print(path)
         return 0
     groups: dict[str, list] = {}
-    for inst in _assets(args):
+    for inst in _assets(args)[1]:
         groups.setdefault(inst.super_category, []).append(inst)
     for name in tqdm(sorted(groups), desc="contact sheets", unit="sheet"):
         path = contact_sheet(groups[name], Path(args.out) / f"{name}.png")

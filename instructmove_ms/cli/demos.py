@@ -20,6 +20,7 @@ def _cmd_demos_generate(args: argparse.Namespace) -> int:
         _workers(args),
         args.shard_size,
         args.perturb,
+        args.sampler,
     )
     print(
         f"{report.kept} demos from {report.tried} seeds ({report.rollouts} rollouts): "
@@ -40,6 +41,8 @@ def _cmd_demos_convert(args: argparse.Namespace) -> int:
 
 
 def add_parsers(sub: argparse._SubParsersAction) -> None:
+    from instructmove_ms.sampler import SAMPLER, SAMPLERS
+
     demos = _add_group(sub, "demos", "planned demonstrations")
     p = demos.add_parser("generate", help="record successful planned demos (resumable)")
     p.add_argument("--task", default="PickCategory-InstructMove")
@@ -51,6 +54,14 @@ def add_parsers(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--shard-size", type=int, default=5, help="demos per resumable shard")
     p.add_argument(
         "--perturb", default=None, help="perturbation levels of the demos, e.g. lighting:1,table:2"
+    )
+    p.add_argument(
+        "--sampler",
+        type=int,
+        default=SAMPLER,
+        choices=SAMPLERS,
+        help=f"the sampler that draws the scenes (default {SAMPLER}, the one of the current "
+        "held-out sets; 1 is InstructMove 1.0's)",
     )
     p.set_defaults(func=_cmd_demos_generate)
     p = demos.add_parser(

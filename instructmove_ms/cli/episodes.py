@@ -88,7 +88,7 @@ def add_parsers(sub: argparse._SubParsersAction) -> None:
     from instructmove_ms.heldout import SET_VERSIONS
 
     episodes_sub = _add_group(sub, "episodes", "held-out evaluation episode sets")
-    from instructmove_ms.sampler import NEWEST_SAMPLER, SAMPLERS
+    from instructmove_ms.sampler import SAMPLER, SAMPLERS
 
     p = episodes_sub.add_parser(
         "write",
@@ -114,9 +114,9 @@ def add_parsers(sub: argparse._SubParsersAction) -> None:
     p.add_argument(
         "--sampler",
         type=int,
-        default=NEWEST_SAMPLER,
+        default=SAMPLER,
         choices=SAMPLERS,
-        help=f"the sampler that draws the scenes (default {NEWEST_SAMPLER}, the symmetric one; "
+        help=f"the sampler that draws the scenes (default {SAMPLER}, the symmetric one; "
         "1 is InstructMove 1.0's)",
     )
     p.set_defaults(func=_cmd_episodes_write)

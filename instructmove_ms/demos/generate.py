@@ -34,6 +34,7 @@ from tqdm import tqdm
 from instructmove_ms.executor import Workers, worker_state
 from instructmove_ms.files import OutputLock, clean_stale, staging, write_json
 from instructmove_ms.perturbation import levels_text, parse_levels
+from instructmove_ms.sampler import SAMPLER, SAMPLERS
 from instructmove_ms.splits import is_training_seed
 from instructmove_ms.tasks import TASKS
 from instructmove_ms.validation import check_choice
@@ -75,6 +76,7 @@ class Job:
     seed: int
     want: int
     perturbation: tuple[tuple[str, int], ...] = ()  # (axis, level) pairs
+    sampler: int = SAMPLER  # the sampler that draws the scenes (``sampler.SAMPLERS``)
 
 
 class _Shared(gym.Wrapper):
@@ -85,11 +87,14 @@ class _Shared(gym.Wrapper):
         pass
 
 
-def _make_env(task: str, robot: str, perturbation: tuple[tuple[str, int], ...]) -> gym.Env:
+def _make_env(
+    task: str, robot: str, perturbation: tuple[tuple[str, int], ...], sampler: int
+) -> gym.Env:
     extra = {"perturbation": dict(perturbation)} if perturbation else {}
     return gym.make(
         task,
         robot_uids=robot,
+        sampler=sampler,
         obs_mode="state",
         control_mode="pd_joint_pos",
         render_backend="cpu",  # recorded into env_kwargs: replay to visual modes needs it
@@ -102,8 +107,8 @@ def _record(job: Job, folder: Path, progress: Progress) -> tuple[list[dict], Cou
     ``folder/<job.name>.h5`` with this worker's env of the task; returns the sidecar
     entries, the failure counts and the number of rollouts run (``synthesize_scene``: only
     a scene's successful rollout is kept)."""
-    make = functools.partial(_make_env, job.task, job.robot, job.perturbation)
-    token = f"demos {job.task} {job.robot} {levels_text(dict(job.perturbation))}"
+    make = functools.partial(_make_env, job.task, job.robot, job.perturbation, job.sampler)
+    token = f"demos {job.task} {job.robot} {levels_text(dict(job.perturbation))} {job.sampler}"
     env = RecordEpisode(
         _Shared(worker_state(token, make)),
         str(folder),
@@ -180,7 +185,8 @@ def _pending(ledger: dict, task: str, robot: str, out: Path, n: int) -> list[Job
                 raise ValueError(f"seed block {seed}.. leaves the training seeds")
             name = f"{task}_{robot}_{index:05d}"
             levels = tuple(ledger.get("perturbation", {}).items())
-            jobs.append(Job(task, robot, out, index, name, seed, want, levels))
+            sampler = ledger.get("sampler", 1)
+            jobs.append(Job(task, robot, out, index, name, seed, want, levels, sampler))
             remaining -= want
         index += 1
     return jobs
@@ -195,13 +201,15 @@ def generate(
     workers: Workers | int = 1,
     shard_size: int = SHARD_SIZE,
     perturbation: dict[str, int] | str | None = None,
+    sampler: int = SAMPLER,
 ) -> Report:
     """Write ``n`` successful demos of ``task`` with ``robot`` into ``out_dir`` (see the module
     docstring) with ``workers`` (local processes or a Ray cluster, see ``executor``),
-    ``shard_size`` demos per shard, their scenes at the ``perturbation`` levels (recorded in
-    each spec), resuming from its ledger (which fixes ``seed0``, ``shard_size`` and the
-    perturbation)."""
+    ``shard_size`` demos per shard, their scenes drawn by ``sampler`` at the ``perturbation``
+    levels (recorded in each spec), resuming from its ledger (which fixes ``seed0``,
+    ``shard_size``, the perturbation and the sampler)."""
     levels = parse_levels(perturbation)
+    check_choice("sampler", sampler, SAMPLERS)
     check_choice("task", task, TASKS)
     check_choice("robot", robot, TASKS[task].supported_robots)
     workers = Workers.of(workers)
@@ -213,7 +221,7 @@ def generate(
     with OutputLock(out, f"instructmove demos generate {stem}"):
         clean_stale(out)  # what a killed run left
         (out / "shards").mkdir(parents=True, exist_ok=True)
-        report = _generate(task, robot, n, out, stem, seed0, workers, shard_size, levels)
+        report = _generate(task, robot, n, out, stem, seed0, workers, shard_size, levels, sampler)
         clean_stale(out)  # what a worker killed mid-shard left (its shard ran again)
         return report
 
@@ -228,16 +236,23 @@ def _generate(
     workers: Workers,
     shard_size: int,
     levels: dict[str, int],
+    sampler: int,
 ) -> Report:
     ledger_path = out / f"{stem}.ledger.json"
     ledger = (
         json.loads(ledger_path.read_text())
         if ledger_path.exists()
-        else {"seed0": seed0, "shard_size": shard_size, "shards": []}
+        else {"seed0": seed0, "shard_size": shard_size, "shards": [], "sampler": sampler}
     )
     if levels and not ledger["shards"]:
         ledger["perturbation"] = levels
-    given = (("seed0", seed0), ("shard_size", shard_size), ("perturbation", levels))
+    ledger.setdefault("sampler", 1)  # a ledger written before samplers were named
+    given = (
+        ("seed0", seed0),
+        ("shard_size", shard_size),
+        ("perturbation", levels),
+        ("sampler", sampler),
+    )
     for key, value in given:
         if ledger.get(key, {}) != value:
             raise ValueError(
