@@ -92,8 +92,7 @@ def _cast(
     if "destination" in drawn:
         chosen = int(rng.integers(len(drawn["destination"])))
         assigned.update(_chosen(drawn, "destination", "distractor_destination", chosen))
-    group = drawn["target"]
-    for k in range(len(group)):
+    for k in range(len(drawn["target"])):  # every member must be able to be the goal
         task.cue.admits(cue, {**assigned, **_chosen(drawn, "target", "distractor", k)})
     return Cast([(inst, role) for role, group in assigned.items() for inst in group], cue)
 
