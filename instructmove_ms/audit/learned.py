@@ -17,6 +17,7 @@ from collections.abc import Sequence
 import numpy as np
 from sklearn.ensemble import HistGradientBoostingClassifier
 from sklearn.model_selection import GroupKFold
+from threadpoolctl import threadpool_limits
 
 from .choices import CATEGORICAL, Choice
 from .rules import score
@@ -26,6 +27,9 @@ CODED = ("category", "super_category", "material", "shape", "size")
 FOLDS = 5
 #: Fixed so that the same choices give the same model (on one machine).
 SEED = 0
+#: OpenMP threads the trees use. The tables are small, and many threads spinning at each
+#: parallel region beside other busy processes slow the fits several times over.
+THREADS = 1
 
 
 class Encoder:
@@ -113,7 +117,8 @@ def _scores(model, encoder: Encoder, choices: Sequence[Choice]) -> list[float]:
     """The adversary's expected accuracy on each choice: it picks the top-scored options."""
     out = []
     for choice in choices:
-        p = model.predict_proba(encoder.rows(choice))[:, 1]
+        with threadpool_limits(THREADS, user_api="openmp"):
+            p = model.predict_proba(encoder.rows(choice))[:, 1]
         picked = [k for k, v in enumerate(p) if v == p.max()]
         out.append(score(picked, choice.answer))
     return out
@@ -122,7 +127,8 @@ def _scores(model, encoder: Encoder, choices: Sequence[Choice]) -> list[float]:
 def fit(train: Sequence[Choice], encoder: Encoder):
     """A model trained to score the answer of ``train``'s choices highest."""
     rows, labels = encoder.table(train)
-    return _model(encoder).fit(rows, labels)
+    with threadpool_limits(THREADS, user_api="openmp"):
+        return _model(encoder).fit(rows, labels)
 
 
 def trained_on(train: Sequence[Choice], test: Sequence[Choice]) -> list[float]:
