@@ -314,6 +314,21 @@ def evaluate_config(
         return _evaluate(policy, config, out, num_envs, sim_backend, video, workers)
 
 
+def _still_valid(rows: list[dict], previous: Path, config: EvaluatorConfig) -> dict:
+    """episode id -> row of ``rows`` (a run's finished episodes) whose episode, as the
+    run's config at ``previous`` gave it, is the one ``config`` gives under that id: a set
+    rewritten since (or another config) runs its changed episodes again."""
+    done = {row["episode_id"]: row for row in rows}
+    if not done or not previous.is_file():
+        return done
+    before = {e.episode_id: e for e in EvaluatorConfig.load(previous).episodes}
+    now = {e.episode_id: e for e in config.episodes}
+    stale = {i for i in done if i in now and before.get(i) != now[i]}
+    if stale:
+        print(f"{len(stale)} finished episodes in {previous.parent} were other episodes: run again")
+    return {i: row for i, row in done.items() if i not in stale}
+
+
 def _evaluate(
     policy: Any,
     config: EvaluatorConfig,
@@ -323,9 +338,9 @@ def _evaluate(
     video: VideoSettings | None,
     workers: Workers,
 ) -> dict:
-    config.write(out / "config.json")
     log = out / "episodes.jsonl"
-    done = {row["episode_id"]: row for row in read_rows(log)}
+    done = _still_valid(read_rows(log), out / "config.json", config)
+    config.write(out / "config.json")
     todo = [e for e in config.episodes if e.episode_id not in done]
     batches = [todo[start : start + num_envs] for start in range(0, len(todo), num_envs)]
     if todo:

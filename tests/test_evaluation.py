@@ -56,6 +56,10 @@ def test_reports_and_resume(tmp_path):
     evaluate(RandomPolicy(0), TASK, "seen", tmp_path, robot="franka", episodes=3)
     lines = (tmp_path / "episodes.jsonl").read_text().splitlines()
     assert lines[:2] == first and len(lines) == 3, "finished episodes are kept, not rerun"
+    evaluate(RandomPolicy(0), TASK, "seen", tmp_path, robot="franka", episodes=3, version=7)
+    rows = [json.loads(line) for line in (tmp_path / "episodes.jsonl").read_text().splitlines()]
+    older = heldout.load_set(TASK, "franka", "seen", version=7)[:3]
+    assert [r["seed"] for r in rows] == [spec.seed for spec in older], "other episodes rerun"
 
 
 def test_oracle_beats_blind_and_its_config_reproduces_the_set(tmp_path, capsys):
