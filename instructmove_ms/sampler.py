@@ -1,10 +1,11 @@
 """Seeded role sampling: which instances of a snapshot play which role in an episode.
 
 Roles are declared with constraints (match or differ on category, super_category, colour,
-shape, material, size or name, against another role or among the role's own members) and
-capability tags. Each slot takes, among the instances that satisfy every constraint, the one
-with the lowest hash of (seed, role, slot, uuid): rendezvous hashing, so the draw depends
-only on the seed and on which instances qualify, never on their order in the catalog.
+shape, material, size, name, extent or look, against another role or among the role's own
+members) and capability tags. Each slot takes, among the instances that satisfy every
+constraint, the one with the lowest hash of (seed, role, slot, uuid): rendezvous hashing,
+so the draw depends only on the seed and on which instances qualify, never on their order
+in the catalog.
 
 Two samplers are kept (``SAMPLERS``). Sampler 1 (InstructMove 1.0) draws the target from the
 split's partition and its rivals from the seen one, with the held-out instances of
@@ -25,11 +26,27 @@ from .assets.catalog import Catalog, Instance, is_held_out_category, stable_hash
 from .splits import SPLITS
 from .validation import check_choice
 
-ATTRIBUTES = ("category", "super_category", "color", "shape", "material", "size", "name", "extent")
+ATTRIBUTES = (
+    "category",
+    "super_category",
+    "color",
+    "shape",
+    "material",
+    "size",
+    "name",
+    "extent",
+    "look",
+)
 RELATIONS = ("match", "differ", "smaller", "larger")
 #: "smaller" / "larger" on "extent" (the largest dimension) need this ratio, so that a person
 #: sees the difference at a glance.
 EXTENT_RATIO = 1.3
+#: A stick: its longest side this many times its middle one, the middle one at most
+#: ``STICK_WIDTH`` metres (a pen, a knife, a toothbrush). Two sticks sharing a colour whose
+#: lengths lie within ``STICK_RATIO`` read as one another at the cameras' resolution.
+STICK_ASPECT = 4.0
+STICK_WIDTH = 0.03
+STICK_RATIO = 1.5
 TAGS = ("graspable", "container")
 EACH_OTHER = "each_other"
 POOLS = ("target", "distractor", "any")
@@ -48,7 +65,8 @@ HELD_OUT_PER_CATEGORY = 4
 class Constraint:
     """``attribute`` must ``relation`` ("match" or "differ") that of role ``other``
     (or of the role's other members when ``other`` is "each_other"); "smaller", "larger"
-    and "differ" on "extent" ask for ``EXTENT_RATIO`` between the largest dimensions."""
+    and "differ" on "extent" ask for ``EXTENT_RATIO`` between the largest dimensions;
+    "differ" on "look" asks that no two be ``lookalike``."""
 
     attribute: str
     relation: str
@@ -61,6 +79,8 @@ class Constraint:
             raise ValueError("'smaller' and 'larger' compare the 'extent' attribute only")
         if self.attribute == "extent" and self.relation == "match":
             raise ValueError("'extent' takes 'smaller', 'larger' or 'differ'")
+        if self.attribute == "look" and self.relation != "differ":
+            raise ValueError("'look' takes 'differ' only")
 
     def __str__(self) -> str:
         return f"{self.attribute} must {self.relation} {self.other}"
@@ -167,7 +187,26 @@ def _holds(relation: str, attribute: str, mine: frozenset, theirs: frozenset) ->
     return same if relation == "match" else not same
 
 
+def _stick(inst: Instance) -> bool:
+    longest, middle, _ = sorted(inst.dims, reverse=True)
+    return longest >= STICK_ASPECT * middle and middle <= STICK_WIDTH
+
+
+def lookalike(a: Instance, b: Instance) -> bool:
+    """True if ``a`` and ``b`` could pass for one another in a camera image: two sticks of
+    a shared colour and lengths within ``STICK_RATIO`` (a red marker, a red-handled knife),
+    or two things of one shape and main colour, their extents within ``EXTENT_RATIO`` (a
+    red tomato, a red apple)."""
+    longer, shorter = sorted((max(a.dims), max(b.dims)), reverse=True)
+    if _stick(a) and _stick(b):
+        return longer < STICK_RATIO * shorter and bool(set(a.colors) & set(b.colors))
+    same_look = a.shape == b.shape and a.colors[0] == b.colors[0]
+    return same_look and longer < EXTENT_RATIO * shorter
+
+
 def _satisfies(inst: Instance, c: Constraint, others: list[Instance]) -> bool:
+    if c.attribute == "look":
+        return not any(lookalike(inst, o) for o in others)
     if c.attribute == "extent":  # mine must be smaller (larger, either) than every other's
         mine = max(inst.dims)
 
@@ -281,9 +320,11 @@ def symmetric(roles: tuple[RoleSpec, ...], goal: str, rival: str) -> tuple[RoleS
     """``roles`` with role ``rival`` folded into role ``goal``: one group of both counts,
     drawn from ``goal``'s pool, whose members satisfy ``goal``'s constraints and, towards
     each other, what ``rival``'s asked towards ``goal`` ("differ from the target" becomes
-    "differ from each other"; "smaller than the target" becomes "differ in size"). Sampler 2
-    casts a goal and its rivals so, then picks the goal among the group. Unchanged where
-    ``roles`` has no ``rival``."""
+    "differ from each other"; "smaller than the target" becomes "differ in size"). Members
+    that differ in category must not look alike either (``lookalike``): the instruction
+    names a category, and a lookalike would answer to it in the image. Sampler 2 casts a
+    goal and its rivals so, then picks the goal among the group. Unchanged where ``roles``
+    has no ``rival``."""
     by_name = {r.name: r for r in roles}
     if rival not in by_name:
         return roles
@@ -301,6 +342,9 @@ def symmetric(roles: tuple[RoleSpec, ...], goal: str, rival: str) -> tuple[RoleS
         relation = "differ" if c.relation in ("smaller", "larger") else c.relation
         return Constraint(c.attribute, relation, EACH_OTHER)
 
-    constraints = tuple(dict.fromkeys(first.constraints + tuple(map(mutual, second.constraints))))
+    constraints = first.constraints + tuple(map(mutual, second.constraints))
+    if Constraint("category", "differ", EACH_OTHER) in constraints:
+        constraints += (Constraint("look", "differ", EACH_OTHER),)
+    constraints = tuple(dict.fromkeys(constraints))
     group = dataclasses.replace(first, count=first.count + second.count, constraints=constraints)
     return tuple(group if r.name == goal else r for r in roles if r.name != rival)

@@ -100,6 +100,7 @@ def test_symmetric_folds_rivals_into_the_goal_group():
     assert set(group.constraints) == {
         Constraint("category", "differ", EACH_OTHER),
         Constraint("name", "differ", EACH_OTHER),
+        Constraint("look", "differ", EACH_OTHER),  # members of other categories
     }
     sized = (
         roles[0],

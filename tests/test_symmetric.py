@@ -5,13 +5,14 @@ attribute leaves no odd one out, and no language-blind rule finds the target; sa
 from __future__ import annotations
 
 from collections import Counter
+from itertools import combinations
 
 import gymnasium as gym
 import pytest
 
 from instructmove_ms import audit
 from instructmove_ms.assets import load_snapshot
-from instructmove_ms.sampler import EXTENT_RATIO, split_of
+from instructmove_ms.sampler import EXTENT_RATIO, lookalike, split_of
 from instructmove_ms.tasks import TASKS
 
 
@@ -35,6 +36,35 @@ def test_every_candidate_comes_from_the_split_partition(env_id, split):
             split_of(catalog[spec.objects[d].uuid], catalog, 2) for d in spec.destinations
         }
         assert receptacles <= {"seen"}, "receptacles are a choice of their own, all seen"
+
+
+def test_lookalikes_are_a_stick_for_a_stick_or_one_shape_and_colour():
+    catalog = load_snapshot()
+    marker = next(i for i in catalog.of_category("marker") if "red" in i.colors)
+    knives = catalog.of_category("fruit_knife")
+    red_knife = next(i for i in knives if "red" in i.colors)
+    assert lookalike(marker, red_knife) and lookalike(red_knife, marker)
+    blue_knife = next(i for i in knives if not set(i.colors) & set(marker.colors))
+    assert not lookalike(marker, blue_knife), "sticks of no shared colour are told apart"
+    tomato = catalog.of_category("tomato")[0]
+    apples = catalog.of_category("apple")
+    assert any(lookalike(tomato, a) for a in apples if a.colors[0] == tomato.colors[0])
+    assert not any(lookalike(tomato, a) for a in apples if a.colors[0] != tomato.colors[0])
+    assert not lookalike(marker, tomato)
+
+
+@pytest.mark.parametrize("env_id", ["PickCategory-InstructMove", "PlaceA2B-InstructMove"])
+@pytest.mark.parametrize("split", ["seen", "unseen_category"])
+def test_no_two_candidates_of_sampler_two_look_alike(env_id, split):
+    """Candidates of different categories never pass for one another (a red marker beside a
+    red-handled knife); sampler 1 kept such pairs."""
+    catalog = load_snapshot()
+    for spec in _specs(env_id, split, 2, range(12)):
+        for roles in (spec.candidates, spec.destinations):
+            group = [catalog[spec.objects[k].uuid] for k in roles]
+            assert not [
+                (a.category, b.category) for a, b in combinations(group, 2) if lookalike(a, b)
+            ]
 
 
 def test_sampler_one_still_draws_rivals_from_the_seen_partition():
