@@ -16,7 +16,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from .layout import Placement, Workspace
-from .sampler import RoleSpec
+from .sampler import Constraint, RoleSpec
 
 if TYPE_CHECKING:
     from .assets.catalog import Catalog, Instance
@@ -90,7 +90,8 @@ class Cue:
     ``admits`` (refuse a cast the cue cannot phrase), ``arrange`` (layout order and
     predicate), ``phrase`` (the words naming the goal object) and ``alternative`` (the cue
     that names another candidate); the symmetric sampler (2) also calls ``group_size`` and
-    ``singles_out``; the verifier calls ``matches`` and ``explain``.
+    ``singles_out``, and its added distractors (``perturbation``) ``rivals``; the verifier
+    calls ``matches`` and ``explain``.
     Subclasses live with their family in ``tasks/``.
     """
 
@@ -98,6 +99,11 @@ class Cue:
         self, rng: np.random.Generator, roles: tuple[RoleSpec, ...]
     ) -> tuple[dict, tuple[RoleSpec, ...]]:
         raise NotImplementedError
+
+    def rivals(self, cue: dict) -> tuple[Constraint, ...]:
+        """The constraints ``draw`` adds to the distractor role under ``cue`` (by default
+        none)."""
+        return ()
 
     def group_size(self, cue: dict, count: int) -> int:
         """How many candidates a scene under ``cue`` holds, of the ``count`` asked: as many

@@ -26,7 +26,7 @@ import numpy as np
 
 from .episode import EpisodeSpec, ObjectSpec
 from .layout import Placement, Workspace, corners, gap, random_placement
-from .sampler import RoleError, more_members
+from .sampler import RoleError, RoleSpec, more_members, symmetric, with_constraints
 
 #: The axes, in the order a sweep runs them.
 AXES = (
@@ -348,19 +348,37 @@ def _layout(spec: EpisodeSpec, rng, p: dict, ctx: Context) -> tuple[EpisodeSpec,
     return moved, {"moves": [[float(v) for v in m] for m in moves]}
 
 
+def _group(
+    spec: EpisodeSpec, ctx: Context, assigned: dict[str, list], count: int
+) -> tuple[RoleSpec | None, dict[str, list]]:
+    """(the candidates' group role as the symmetric sampler cast it, ``assigned`` with every
+    candidate its member); no role where the cue's group cannot take ``count`` more (a size
+    or material told apart between two)."""
+    candidates = [ctx.catalog[spec.objects[k].uuid] for k in spec.candidates]
+    if ctx.task.cue.group_size(spec.cue, len(candidates) + count) < len(candidates) + count:
+        return None, assigned
+    roles = with_constraints(ctx.task.roles, "distractor", *ctx.task.cue.rivals(spec.cue))
+    group = next(r for r in symmetric(roles, "target", "distractor") if r.name == "target")
+    others = {name: members for name, members in assigned.items() if name != "distractor"}
+    return group, {**others, "target": candidates}
+
+
 def _add_distractors(
     spec: EpisodeSpec, rng, count: int, ctx: Context
 ) -> tuple[EpisodeSpec, dict] | None:
     """``count`` more distractors drawn under the family's distractor role and placed where
     the layout engine would allow them; None where none qualifies, no place is free or the
-    verifier refuses the scene."""
+    verifier refuses the scene. Under the symmetric sampler they join the candidates' group
+    (``_group``): what they must differ in, they differ in from every candidate."""
     assigned: dict[str, list] = {}
     for obj in spec.objects:
         assigned.setdefault(obj.role, []).append(ctx.catalog[obj.uuid])
     key = f"{spec.seed}:more:{int(rng.integers(1 << 31))}"
     role = ctx.task.role("distractor")
-    if spec.sampler != 1:  # the symmetric sampler draws every candidate from the split's partition
-        role = dataclasses.replace(role, pool="target")
+    if spec.sampler != 1:
+        role, assigned = _group(spec, ctx, assigned, count)
+        if role is None:
+            return None
     try:
         extra = more_members(role, assigned, count, ctx.catalog, spec.split, key, spec.sampler)
     except RoleError:

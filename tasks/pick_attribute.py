@@ -91,22 +91,24 @@ class AttributeCue(Cue):
 
     def draw(self, rng: np.random.Generator, roles: tuple[RoleSpec, ...]):
         attribute = self.attributes[int(rng.integers(len(self.attributes)))]
-        if attribute == "size":
-            direction = ("smaller", "larger")[int(rng.integers(2))]
-            extra = (Constraint("extent", direction, "target"),)
-            # the distractors are smaller: the target is the larger one, and vice versa
-            cue = {
-                "attribute": "size",
-                "direction": "larger" if direction == "smaller" else "smaller",
-            }
+        cue = {"attribute": attribute}
+        if attribute == "size":  # the direction the target lies in
+            cue["direction"] = ("larger", "smaller")[int(rng.integers(2))]
+        return cue, with_constraints(roles, "distractor", *self.rivals(cue))
+
+    def rivals(self, cue: dict) -> tuple[Constraint, ...]:
+        """Distractors differ from the target in the named attribute (smaller than a larger
+        target, and vice versa) and in colour from it and from each other."""
+        if cue["attribute"] == "size":
+            relation = "smaller" if cue["direction"] == "larger" else "larger"
+            named = Constraint("extent", relation, "target")
         else:
-            extra = (Constraint(attribute, "differ", "target"),)
-            cue = {"attribute": attribute}
-        extra += (
+            named = Constraint(cue["attribute"], "differ", "target")
+        return (
+            named,
             Constraint("color", "differ", "target"),
             Constraint("color", "differ", EACH_OTHER),
         )
-        return cue, with_constraints(roles, "distractor", *extra)
 
     def admits(self, cue: dict, assigned: dict[str, list[Instance]]) -> None:
         """Refuse a cast where the named difference would not show in the image: a target

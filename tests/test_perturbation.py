@@ -310,9 +310,9 @@ def test_the_planner_reads_every_perturbed_scene(axis):
 
 def test_added_distractors_stand_in_the_scene_and_keep_one_goal():
     env = gym.make("PickAttribute-InstructMove", robot_uids="franka", obs_mode="state")
-    env.reset(seed=1)  # a scene that takes more candidates
+    env.reset(seed=0)  # a scene that takes more candidates (told apart by colour)
     plain = env.unwrapped.episode
-    env.reset(seed=1, options={"perturbation": {"distractors": 3}})
+    env.reset(seed=0, options={"perturbation": {"distractors": 3}})
     spec = env.unwrapped.episode
     added = spec.perturbation["distractors"]["added"]
     most = 1 + env.unwrapped.task.count_limits["distractor"][1]  # candidates the family allows
@@ -330,6 +330,26 @@ def test_added_distractors_stand_in_the_scene_and_keep_one_goal():
         np.testing.assert_allclose(pos[:2], o.pose[:2], atol=0.01)
     opening = env.unwrapped.agent.gripper.max_width
     assert verify(spec, env.unwrapped.catalog, env.unwrapped.task, opening) == []
+    env.close()
+
+
+def test_added_distractors_join_the_symmetric_group_and_leave_no_odd_one_out():
+    """Under the symmetric sampler an added distractor differs from every candidate in what
+    the cue names (colours all apart); a cue told apart between two takes none."""
+    env = gym.make("PickAttribute-InstructMove", robot_uids="franka", obs_mode="state")
+    u, added_by = env.unwrapped, {"color": 0, "paired": 0}
+    for seed in range(8):
+        env.reset(seed=seed, options={"perturbation": {"distractors": 3}})
+        spec = u.episode
+        group = [u.catalog[spec.objects[k].uuid] for k in spec.candidates]
+        added = spec.perturbation["distractors"]["added"]
+        if spec.cue["attribute"] == "color":
+            added_by["color"] += len(added)
+            for k, a in enumerate(group):
+                assert all(not set(a.colors) & set(b.colors) for b in group[k + 1 :])
+        else:
+            added_by["paired"] += len(added)
+    assert added_by == {"color": added_by["color"], "paired": 0} and added_by["color"] > 0
     env.close()
 
 
