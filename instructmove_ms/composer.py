@@ -85,6 +85,8 @@ def _cast(
         roles = symmetric(roles, goal, rival)
     drawn = resolve_roles(roles, catalog, split, key, sampler)
     named = task.cue.singles_out(cue, drawn["target"])
+    if not named:
+        raise RoleError(f"no member of the group the cue {cue} can name")
     assigned = {
         **drawn,
         **_chosen(drawn, "target", "distractor", named[int(rng.integers(len(named)))]),

@@ -112,7 +112,8 @@ class Cue:
 
     def singles_out(self, cue: dict, group: Sequence[Instance]) -> list[int]:
         """The members of a candidate ``group`` that ``cue`` as drawn can name (by default
-        every one); the symmetric sampler takes the goal uniformly among them."""
+        every one; none refuses the group); the symmetric sampler takes the goal uniformly
+        among them."""
         return list(range(len(group)))
 
     def admits(self, cue: dict, assigned: dict[str, list[Instance]]) -> None:

@@ -42,6 +42,11 @@ def _sets_apart(attribute: str, inst: Instance, others: Sequence[Instance]) -> b
     return all(getattr(o, attribute) != getattr(inst, attribute) for o in others)
 
 
+#: Shapes the symmetric sampler does not tell apart: a cube-shaped body and a rectangular one
+#: differ in proportions that the whole object does not show (a charging head's prongs and
+#: plug face: readers took the "square" one for its rectangular twin).
+SHAPES_ALIKE = (frozenset({"cube", "cuboid"}),)
+
 #: The most of another candidate's surface that may show the colour a candidate is named
 #: by ("the clear bottle" beside bottles whose shoulders are clear too is no name).
 SHARED_COLOR = 0.2
@@ -82,8 +87,11 @@ class AttributeCue(Cue):
         return min(count, 2) if cue["attribute"] in self.paired else count
 
     def singles_out(self, cue: dict, group: Sequence[Instance]) -> list[int]:
-        """Every member for colour, material and shape (their values all differ); for size
-        the member the drawn direction names (the larger or the smaller of two)."""
+        """Every member for colour, material and shape (their values all differ), none for
+        shapes that look alike (``SHAPES_ALIKE``); for size the member the drawn direction
+        names (the larger or the smaller of two)."""
+        if cue["attribute"] == "shape" and frozenset(i.shape for i in group) in SHAPES_ALIKE:
+            return []
         if cue["attribute"] != "size":
             return list(range(len(group)))
         pick = max if cue["direction"] == "larger" else min

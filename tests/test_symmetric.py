@@ -53,6 +53,20 @@ def test_lookalikes_are_a_stick_for_a_stick_or_one_shape_and_colour():
     assert not lookalike(marker, tomato)
 
 
+def test_shapes_that_look_alike_name_no_member():
+    """A cube-shaped charging head and a rectangular one: the cue names neither (the
+    composer refuses the group); a cylinder and a cuboid it names both."""
+    catalog = load_snapshot()
+    cue = TASKS["PickAttribute-InstructMove"].cue
+    heads = catalog.of_category("charging_head")
+    pair = [next(i for i in heads if i.shape == s) for s in ("cube", "cuboid")]
+    assert cue.singles_out({"attribute": "shape"}, pair) == []
+    assert cue.singles_out({"attribute": "color"}, pair) == [0, 1]
+    clocks = catalog.of_category("alarm_clock")
+    apart = [next(i for i in clocks if i.shape == s) for s in ("cylinder", "cuboid")]
+    assert cue.singles_out({"attribute": "shape"}, apart) == [0, 1]
+
+
 @pytest.mark.parametrize("env_id", ["PickCategory-InstructMove", "PlaceA2B-InstructMove"])
 @pytest.mark.parametrize("split", ["seen", "unseen_category"])
 def test_no_two_candidates_of_sampler_two_look_alike(env_id, split):
