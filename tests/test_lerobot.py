@@ -315,6 +315,9 @@ ACT = [
     "--policy.push_to_hub=false",
 ]
 TRAIN_STEPS = 300
+#: lerobot's processes: offline, and torch on one thread (the suite's other worker keeps the
+#: second core busy; threads spinning against it slowed training several times over).
+LEROBOT_ENV = {"HF_HUB_OFFLINE": "1", "OMP_NUM_THREADS": "1", "MKL_NUM_THREADS": "1"}
 #: The trained checkpoint's loss on a fixed batch, at most this fraction of a fresh policy's.
 LEARNED = 0.75
 FIXED_BATCH = Path(__file__).parent / "tools" / "lerobot_fixed_batch_loss.py"
@@ -325,7 +328,7 @@ def _fixed_batch_loss(checkpoint: Path, dataset: Path) -> dict:
     on a fixed batch of ``dataset`` (tests/tools/lerobot_fixed_batch_loss.py, in the lerobot
     environment)."""
     argv = [str(LEROBOT_PYTHON), str(FIXED_BATCH), str(checkpoint), str(dataset), REPO]
-    env = {**os.environ, "HF_HUB_OFFLINE": "1"}
+    env = {**os.environ, **LEROBOT_ENV}
     run = subprocess.run(argv, capture_output=True, text=True, env=env, timeout=600)
     assert run.returncode == 0, run.stderr[-3000:]
     return json.loads(run.stdout.strip().splitlines()[-1])
@@ -344,7 +347,7 @@ def test_lerobot_trains_on_the_export_and_its_checkpoint_is_served_and_evaluated
     argv += [f"--dataset.root={dataset}", *ACT, f"--steps={TRAIN_STEPS}", "--batch_size=8"]
     argv += ["--num_workers=0", "--log_freq=10", f"--save_freq={TRAIN_STEPS}", "--eval_freq=0"]
     argv += ["--wandb.enable=false", f"--output_dir={out}"]
-    env = {**os.environ, "HF_HUB_OFFLINE": "1"}
+    env = {**os.environ, **LEROBOT_ENV}
     run = subprocess.run(argv, capture_output=True, text=True, env=env, timeout=1200)
     assert run.returncode == 0, run.stderr[-3000:]
     losses = [float(x) for x in re.findall(r"step:\S+ .*? loss:([0-9.]+)", run.stdout + run.stderr)]
