@@ -116,11 +116,11 @@ def _model(encoder: Encoder) -> HistGradientBoostingClassifier:
 def _scores(model, encoder: Encoder, choices: Sequence[Choice]) -> list[float]:
     """The adversary's expected accuracy on each choice: it picks the top-scored options."""
     out = []
-    for choice in choices:
-        with threadpool_limits(THREADS, user_api="openmp"):
+    with threadpool_limits(THREADS, user_api="openmp"):  # once: it reads the loaded libraries
+        for choice in choices:
             p = model.predict_proba(encoder.rows(choice))[:, 1]
-        picked = [k for k, v in enumerate(p) if v == p.max()]
-        out.append(score(picked, choice.answer))
+            picked = [k for k, v in enumerate(p) if v == p.max()]
+            out.append(score(picked, choice.answer))
     return out
 
 
