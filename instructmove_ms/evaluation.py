@@ -249,11 +249,11 @@ def _make_env(
     video: VideoSettings | None,
 ) -> gym.Env:
     obs_mode = policy.get_obs_mode()
+    cameras = getattr(policy, "get_sensor_configs", lambda: None)()
     if video:
         render = {"render_mode": "rgb_array", "human_render_camera_configs": video.camera}
-    else:
-        render = {"render_backend": "none"} if obs_mode in STATE_MODES else {}
-    cameras = getattr(policy, "get_sensor_configs", lambda: None)()
+    else:  # a policy that names its cameras' resolution renders them, whatever it observes
+        render = {"render_backend": "none"} if obs_mode in STATE_MODES and not cameras else {}
     if cameras:  # the resolution the policy's images come from
         render["sensor_configs"] = cameras
     return gym.make(

@@ -36,11 +36,15 @@ def axis_sheet(env: gym.Env, seed: int, axis: str, path: Path) -> Path:
     return path
 
 
-def sheet_env(task: str, robot: str | None, width: int, height: int) -> gym.Env:
+def sheet_env(task: str, robot: str | None, width: int, height: int, **options) -> gym.Env:
     """An rgb env of ``task`` whose cameras render ``width`` x ``height``, for picture
-    sheets."""
+    sheets; ``options`` go to ``gym.make``."""
     return gym.make(
-        task, robot_uids=robot, obs_mode="rgb", sensor_configs={"width": width, "height": height}
+        task,
+        robot_uids=robot,
+        obs_mode="rgb",
+        sensor_configs={"width": width, "height": height},
+        **options,
     )
 
 

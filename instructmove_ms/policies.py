@@ -16,6 +16,8 @@ built for the object (and receptacle) they go for (a learned policy never does).
   target that grasps and lifts it; with a receptacle it then carries it over it and opens.
 - ``ScriptedBlindPolicy`` (``scripted-blind``): the scripted skill on a random candidate.
 - ``RandomPolicy`` (``random``): random actions.
+- ``GroundedPolicy`` (``grounded[:CHECKPOINT]``): a learned grounding model's choice from
+  the first step's cameras and the instruction, then the oracle's planned motions for it.
 """
 
 from __future__ import annotations
@@ -184,7 +186,7 @@ class OraclePolicy(Seeded):
 
     def reset(self, obs, seed: int | None = None) -> None:
         self.reseed(seed)
-        obj, dest = self.choose(self.env.unwrapped.episode)
+        self.goal = obj, dest = self.choose(self.env.unwrapped.episode)
         scene = PlanningScene.from_env(self.env, obj, dest)
         self.script = MotionScript(scene, self.PICK_ATTEMPTS, done=obj < 0)
         self.queue: list[np.ndarray] = []
@@ -210,6 +212,35 @@ class BlindPolicy(OraclePolicy):
 
     def choose(self, spec: EpisodeSpec) -> tuple[int, int]:
         return random_goal(spec, self.rng)
+
+
+class GroundedPolicy(OraclePolicy):
+    """Chooses the object (and receptacle) with a grounding model (``grounding``: crops of
+    the candidates in the 224 x 224 cameras at the first step, located by segmentation, and
+    the instruction), then plays the oracle's planned motions for its choice: a learned
+    chooser with perfect control. Trained without the instruction, it is the image-only
+    twin."""
+
+    SIDE = 224  # the cameras' resolution the model learned from
+
+    def __init__(self, checkpoint, seed: int = 0) -> None:
+        from .grounding.training import load
+
+        super().__init__(seed)
+        self.model = load(checkpoint)
+
+    def get_sensor_configs(self) -> dict:
+        return {"width": self.SIDE, "height": self.SIDE}
+
+    def choose(self, spec: EpisodeSpec) -> tuple[int, int]:
+        from .audit.choices import decisions
+        from .grounding.crops import of_views
+        from .grounding.training import choose
+        from .readers.material import views_of
+
+        picked = choose(self.model, of_views(views_of(self.env), spec, goal=False))
+        goals = [o[p] for (_, o, _), p in zip(decisions(spec, goal=False), picked, strict=True)]
+        return goals[0], goals[1] if len(goals) > 1 else -1
 
 
 REFERENCE_POLICIES = {

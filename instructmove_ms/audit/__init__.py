@@ -26,6 +26,9 @@ __all__ = ["run", "judge"]
 
 #: Training scenes per family the learned adversary trains on, by default.
 TRAINING_SCENES = 300
+#: Rendered training scenes per family and robot the pixel adversary learns from, for the
+#: published figures (the audit runs it only when asked: it renders for tens of minutes).
+PIXEL_SCENES = 400
 
 
 def _groups(choices: Sequence[Choice]) -> dict[tuple[str, str], list[Choice]]:
@@ -86,14 +89,25 @@ def run(
     fresh_scenes: int = 0,
     progress: bool = True,
     sampler: int | None = None,
+    pixel_scenes: int = 0,
 ) -> tuple[list[Cell], list[Path]]:
     """Audit the stored sets of ``version`` (or under ``folder``) and, with ``fresh_scenes``,
     that many fresh scenes per family and split, training and fresh scenes drawn by the
     sampler that drew the sets; with ``sampler`` instead, audit that sampler's fresh scenes
-    alone. Write the report under ``out``; returns the cells and the files written."""
-    for what, count in (("training scenes", training_scenes), ("fresh scenes", fresh_scenes)):
+    alone. With ``pixel_scenes``, the pixel adversary (``pixels``) judges the stored sets
+    too, trained on that many rendered training scenes per family and robot (renders and
+    model kept under ``out/pixels``). Write the report under ``out``; returns the cells and
+    the files written."""
+    counts = {
+        "training scenes": training_scenes,
+        "fresh scenes": fresh_scenes,
+        "pixel scenes": pixel_scenes,
+    }
+    for what, count in counts.items():
         if count < 0:
             raise ValueError(f"{what} must be 0 or more, got {count}")
+    if sampler is not None and pixel_scenes:
+        raise ValueError("the pixel adversary judges stored sets: drop --sampler or --pixel-scenes")
     if sampler is None:
         specs = stored_specs(version, folder)
         sampler, sets = sampler_of(specs), str(folder) if folder else benchmark_name(version)
@@ -109,11 +123,22 @@ def run(
         training += training_choices(env_id, training_scenes, sampler, progress)
         fresh += fresh_choices(env_id, fresh_scenes, sampler, progress)
     found, on_training = judge(stored, training, fresh=fresh)
+    about: dict = {}
+    if pixel_scenes:
+        from . import pixels  # torch and the renderer, only when asked
+
+        seen, losses = pixels.judge(
+            stored, out / "pixels", pixel_scenes, sampler, version, folder, progress
+        )
+        found += seen
+        about["pixel adversary's training loss per epoch"] = [round(v, 3) for v in losses]
     about = {
         "sets": sets,
         "sampler": sampler,
         "episodes": len({(c.family, c.split, c.robot, c.seed) for c in stored}),
         "training scenes per family": training_scenes,
         "fresh scenes per family and split": fresh_scenes,
+        "rendered training scenes per family and robot (pixel adversary)": pixel_scenes,
+        **about,
     }
     return found, report.write(out, about, found, on_training)

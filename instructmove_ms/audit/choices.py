@@ -122,13 +122,20 @@ def option_of(spec: EpisodeSpec, catalog: Catalog, k: int) -> Option:
     return Option(values, numbers, novel=split_of(inst, catalog, spec.sampler) != "seen")
 
 
-def choices_of(spec: EpisodeSpec, catalog: Catalog) -> list[Choice]:
-    """The decisions of a normal episode: the object (and, with receptacles, the receptacle)."""
-    if spec.target < 0:
+def decisions(spec: EpisodeSpec, goal: bool = True) -> list[tuple[str, tuple[int, ...], int]]:
+    """(kind, option indices into ``spec.objects``, answer index or -1) of each decision of
+    an episode: the object (and, with receptacles, the receptacle); ``goal`` True: of a
+    normal episode (a ``ValueError`` where it has none)."""
+    if goal and spec.target < 0:
         raise ValueError(f"episode of seed {spec.seed} has no goal ({spec.condition})")
-    decisions = [("object", spec.candidates, spec.target)]
+    found = [("object", tuple(spec.candidates), spec.target)]
     if spec.destinations:
-        decisions.append(("receptacle", spec.destinations, spec.goal_destination))
+        found.append(("receptacle", tuple(spec.destinations), spec.goal_destination))
+    return found
+
+
+def choices_of(spec: EpisodeSpec, catalog: Catalog) -> list[Choice]:
+    """The choices of a normal episode (see ``decisions``)."""
     return [
         Choice(
             family=spec.family,
@@ -137,7 +144,7 @@ def choices_of(spec: EpisodeSpec, catalog: Catalog) -> list[Choice]:
             robot=spec.robot,
             seed=spec.seed,
             options=tuple(option_of(spec, catalog, k) for k in indices),
-            answer=list(indices).index(answer),
+            answer=indices.index(answer),
         )
-        for kind, indices, answer in decisions
+        for kind, indices, answer in decisions(spec)
     ]

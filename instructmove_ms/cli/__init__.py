@@ -14,6 +14,7 @@ from instructmove_ms.cli import (
     episodes,
     evaluate,
     export,
+    grounding,
     perturb,
     quickstart,
     readers,
@@ -34,6 +35,7 @@ VERBS = (
     perturb,
     assets,
     readers,
+    grounding,
 )
 
 

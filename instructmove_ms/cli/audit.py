@@ -18,6 +18,7 @@ def _cmd_audit(args: argparse.Namespace) -> int:
         args.training_scenes,
         args.fresh_scenes,
         sampler=args.sampler,
+        pixel_scenes=args.pixel_scenes,
     )
     failed = [c for c in cells if c.failed]
     for c in sorted(failed, key=lambda c: -c.z):
@@ -31,7 +32,7 @@ def _cmd_audit(args: argparse.Namespace) -> int:
 
 
 def add_parsers(sub: argparse._SubParsersAction) -> None:
-    from instructmove_ms.audit import TRAINING_SCENES
+    from instructmove_ms.audit import PIXEL_SCENES, TRAINING_SCENES
     from instructmove_ms.cli.common import _add_set_version
     from instructmove_ms.sampler import SAMPLERS
 
@@ -56,6 +57,14 @@ def add_parsers(sub: argparse._SubParsersAction) -> None:
         default=0,
         help="also judge the sampler on this many fresh evaluation scenes per family and split "
         "(seeds no stored set reaches; default 0)",
+    )
+    p.add_argument(
+        "--pixel-scenes",
+        type=int,
+        default=0,
+        help="also judge the sets with the pixel adversary (a network on each option's crops "
+        "in the 224 x 224 cameras), trained on this many rendered training scenes per family "
+        f"and robot (default 0: off; {PIXEL_SCENES} for the figures in docs/audit.md)",
     )
     p.add_argument(
         "--sampler",

@@ -8,17 +8,23 @@ import json
 from instructmove_ms.cli.common import _add_set_version, _add_workers, _workers
 
 SERVED = ("ws://", "wss://", "zmq://")  # a policy server's address
+GROUNDED = "grounded"  # the grounding model's policy, with its checkpoint after a colon
 
 
 def _load_policy(spec: str, args: argparse.Namespace):
-    """A reference policy name, ``ws://HOST:PORT`` (openpi's server), ``zmq://HOST:PORT``
-    (GR00T's) or ``MODULE:CLASS``."""
+    """A reference policy name, ``grounded[:CHECKPOINT]``, ``ws://HOST:PORT`` (openpi's
+    server), ``zmq://HOST:PORT`` (GR00T's) or ``MODULE:CLASS``."""
     import importlib
 
     from instructmove_ms.policies import REFERENCE_POLICIES
 
     if spec in REFERENCE_POLICIES:
         return REFERENCE_POLICIES[spec]()
+    if spec == GROUNDED or spec.startswith(f"{GROUNDED}:"):
+        from instructmove_ms.grounding import CHECKPOINT
+        from instructmove_ms.policies import GroundedPolicy
+
+        return GroundedPolicy(spec.partition(":")[2] or CHECKPOINT)
     if spec.startswith(SERVED):
         from instructmove_ms.remote import RemotePolicy
 
@@ -34,7 +40,7 @@ def _load_policy(spec: str, args: argparse.Namespace):
     if not name:
         raise ValueError(
             f"unknown policy {spec!r}; allowed: {', '.join(sorted(REFERENCE_POLICIES))}, "
-            "ws://HOST:PORT, zmq://HOST:PORT or MODULE:CLASS"
+            "grounded[:CHECKPOINT], ws://HOST:PORT, zmq://HOST:PORT or MODULE:CLASS"
         )
     try:
         found = importlib.import_module(module)

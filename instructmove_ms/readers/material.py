@@ -120,12 +120,35 @@ class Views:
         return self.segmentation[camera] == sid
 
 
-class SceneRenderer:
-    """Stored episodes reset in rgb envs at ``side`` x ``side`` (the policy's resolution by
-    default), one env per (env id, robot), with the segmentation of every camera."""
+def views_of(env, sensor_data: dict | None = None) -> Views:
+    """What every camera of ``env`` shows: ``sensor_data`` of its latest observation (an rgb
+    env's ``obs["sensor_data"]``) or, without, what the cameras capture now; with each
+    camera's segmentation of the same moment."""
+    unwrapped = env.unwrapped
+    agent = unwrapped.agent
+    cameras = list(agent.scene_cameras) + [
+        c.uid for c in agent._sensor_configs if c.uid not in agent.scene_cameras
+    ]
+    if sensor_data is None:
+        sensor_data = unwrapped._get_obs_sensor_data()
+    rgb = {c: sensor_data[c]["rgb"][0].cpu().numpy() for c in cameras}
+    segmentation = {}
+    for c in cameras:
+        camera = unwrapped._sensors[c]
+        seg = camera.get_obs(rgb=False, depth=False, position=False, segmentation=True)
+        segmentation[c] = seg["segmentation"][0, ..., 0].cpu().numpy()
+    ids = {int(o.per_scene_id[0]): k for k, o in enumerate(unwrapped.objects)}
+    return Views(tuple(cameras), len(agent.scene_cameras), rgb, segmentation, ids)
 
-    def __init__(self, side: int = POLICY_RESOLUTION) -> None:
+
+class SceneRenderer:
+    """Episodes reset in rgb envs at ``side`` x ``side`` (the policy's resolution by
+    default), one env per (env id, robot), with the segmentation of every camera; ``options``
+    go to every env made (a ``split`` and ``sampler`` for the scenes it composes)."""
+
+    def __init__(self, side: int = POLICY_RESOLUTION, **options) -> None:
         self.side = side
+        self.options = options
         self._envs: dict[tuple, object] = {}
 
     def env(self, env_id: str, robot: str):
@@ -133,26 +156,14 @@ class SceneRenderer:
 
         key = (env_id, robot)
         if key not in self._envs:
-            self._envs[key] = sheet_env(env_id, robot, self.side, self.side)
+            self._envs[key] = sheet_env(env_id, robot, self.side, self.side, **self.options)
         return self._envs[key]
 
     def views(self, env_id: str, spec: EpisodeSpec) -> Views:
         """What every camera of ``spec``'s robot sees of its scene after the reset."""
         env = self.env(env_id, spec.robot)
         obs, _ = env.reset(options={"episode": spec})
-        unwrapped = env.unwrapped
-        agent = unwrapped.agent
-        cameras = list(agent.scene_cameras) + [
-            c.uid for c in agent._sensor_configs if c.uid not in agent.scene_cameras
-        ]
-        rgb = {c: obs["sensor_data"][c]["rgb"][0].cpu().numpy() for c in cameras}
-        segmentation = {}
-        for c in cameras:
-            camera = unwrapped._sensors[c]
-            seg = camera.get_obs(rgb=False, depth=False, position=False, segmentation=True)
-            segmentation[c] = seg["segmentation"][0, ..., 0].cpu().numpy()
-        ids = {int(o.per_scene_id[0]): k for k, o in enumerate(unwrapped.objects)}
-        return Views(tuple(cameras), len(agent.scene_cameras), rgb, segmentation, ids)
+        return views_of(env, obs["sensor_data"])
 
     def state_env(self, env_id: str, robot: str):
         """A state env of (``env_id``, ``robot``) that only composes episodes."""
