@@ -16,8 +16,9 @@ built for the object (and receptacle) they go for (a learned policy never does).
   target that grasps and lifts it; with a receptacle it then carries it over it and opens.
 - ``ScriptedBlindPolicy`` (``scripted-blind``): the scripted skill on a random candidate.
 - ``RandomPolicy`` (``random``): random actions.
-- ``GroundedPolicy`` (``grounded[:CHECKPOINT]``): a learned grounding model's choice from
-  the first step's cameras and the instruction, then the oracle's planned motions for it.
+- ``GroundedPolicy`` (``grounded[:CHECKPOINT]``, the shipped checkpoint by default): a
+  learned grounding model's choice from the first step's cameras and the instruction, then
+  the oracle's planned motions for it.
 """
 
 from __future__ import annotations
@@ -223,11 +224,12 @@ class GroundedPolicy(OraclePolicy):
 
     SIDE = 224  # the cameras' resolution the model learned from
 
-    def __init__(self, checkpoint, seed: int = 0) -> None:
+    def __init__(self, checkpoint=None, seed: int = 0) -> None:
+        from .grounding import CHECKPOINT
         from .grounding.training import load
 
         super().__init__(seed)
-        self.model = load(checkpoint)
+        self.model = load(checkpoint or CHECKPOINT)
 
     def get_sensor_configs(self) -> dict:
         return {"width": self.SIDE, "height": self.SIDE}
@@ -249,4 +251,5 @@ REFERENCE_POLICIES = {
     "scripted": ScriptedOraclePolicy,
     "scripted-blind": ScriptedBlindPolicy,
     "random": RandomPolicy,
+    "grounded": GroundedPolicy,  # the shipped checkpoint; grounded:CHECKPOINT for another
 }

@@ -22,7 +22,8 @@ from .tasks import TASKS
 from .video import VideoSettings
 
 SPLIT = "seen"
-POLICIES = ("oracle", "blind", "random")  # the upper bound, chance and the floor
+#: The upper bound, the learned grounding model (the planner acting), chance and the floor.
+POLICIES = ("oracle", "grounded", "blind", "random")
 
 
 @dataclass(frozen=True)

@@ -7,8 +7,7 @@ import numpy as np
 import pytest
 import torch
 
-from instructmove_ms.audit.pixels import NAME, judge
-from instructmove_ms.audit.scenes import choices
+from instructmove_ms.audit.pixels import NAME, judge, statistics
 from instructmove_ms.grounding import scenes
 from instructmove_ms.grounding.crops import CAMERAS, CROP, GEOMETRY, Decisions, crop
 from instructmove_ms.grounding.training import Schedule, choose, fit
@@ -56,6 +55,7 @@ def _planted(n: int, seed: int) -> Decisions:
     crops = rng.integers(0, 120, (n * 3, CAMERAS, 4, CROP, CROP), dtype=np.uint8)
     answer = rng.integers(0, 3, n)
     crops[np.arange(n) * 3 + answer, :, :3] += 120
+    crops[:, :, 3] = 255  # each crop is all option
     return _decisions(crops, answer, ["pick it"] * n)
 
 
@@ -132,33 +132,34 @@ def test_rendered_training_scenes_hold_every_option_of_every_decision(tmp_path):
     assert {p: p.stat().st_mtime_ns for p in tmp_path.rglob("*.npz")} == mtimes  # kept
 
 
-def test_the_pixel_adversary_judges_every_stored_choice(tmp_path, monkeypatch):
+def test_the_pixel_adversaries_judge_every_stored_decision(tmp_path, monkeypatch):
     family = "PickAttribute-InstructMove"
-    specs = [s for robot in ("franka", "piperx") for s in load_set(family, robot, "seen")[:20]]
-    stored = choices(specs)
-    rendered = scenes.training(tmp_path, 2, families=(family,), progress=False)
-    judged = _as_stored(rendered, stored)
+    judged = _planted(40, 8)
+    judged = Decisions(
+        **{**judged.__dict__, "family": np.array(["pick_attribute"] * 40)},
+    )
     monkeypatch.setattr(scenes, "stored", lambda *a, **k: judged)
-    cells, losses = judge(stored, tmp_path, 2, 2, schedule=Schedule(epochs=2), progress=False)
-    assert len(losses) == 2 and all(c.adversary == NAME for c in cells)
-    pooled = next(c for c in cells if c.split == "pooled" and c.robot == "pooled")
-    assert pooled.episodes == 40 and pooled.scenes == len({c.seed for c in stored})
-    assert 0 <= pooled.accuracy <= 1
-    assert {c.robot for c in cells} == {"franka", "piperx", "pooled"}
-
-
-def _as_stored(d: Decisions, stored) -> Decisions:
-    """``d``'s pictures under the keys of ``stored``'s choices (one decision each)."""
-    rows = np.arange(len(stored)) % len(d)
-    part = d.take(rows)
-    per = {
-        "family": [c.family for c in stored],
-        "kind": [c.kind for c in stored],
-        "split": [c.split for c in stored],
-        "robot": [c.robot for c in stored],
-        "seed": [c.seed for c in stored],
+    schedule = Schedule(epochs=2)
+    cells, losses = judge(tmp_path, 4, 2, schedule=schedule, progress=False, families=(family,))
+    assert len(losses) == 2
+    assert {c.adversary for c in cells} == {
+        NAME,
+        "pixel statistics, trees trained",
+        "pixel statistics, trees within",
     }
-    return Decisions(**{**part.__dict__, **{k: np.array(v) for k, v in per.items()}})
+    pooled = [c for c in cells if c.split == "pooled" and c.robot == "pooled"]
+    assert all(c.episodes == 40 and c.scenes == 40 for c in pooled)
+    within = next(c for c in pooled if c.adversary == "pixel statistics, trees within")
+    assert within.accuracy > 0.8  # the planted answer is the brightest: the trees find it
+
+
+def test_image_statistics_hold_only_what_the_pictures_show():
+    d = _planted(3, 9)
+    found = statistics(d)
+    assert [c.answer for c in found] == list(d.answer)
+    option = found[0].options[0]
+    assert {v for vs in option.values.values() for v in vs} == {""}
+    assert set(option.numbers) >= {"r mean 0", "b spread 2", "fill 1", "side 0"}
 
 
 def test_a_trained_checkpoint_loads_and_its_choice_is_picked_up(tmp_path):
@@ -194,3 +195,24 @@ def test_a_trained_checkpoint_loads_and_its_choice_is_picked_up(tmp_path):
         assert float(body.pose.p[0, 2]) > start + 0.05  # the chosen object was lifted
     finally:
         env.close()
+
+
+def test_the_judge_pools_robots_and_splits_and_counts_chance_per_decision():
+    from instructmove_ms.grounding.judge import POOLED, table
+
+    d = _planted(4, 7)
+    d = Decisions(
+        **{
+            **d.__dict__,
+            "robot": np.array(["franka", "piperx", "franka", "piperx"]),
+            "count": np.array([3, 3, 2, 2]),
+        }
+    )
+    picked = d.answer.copy()
+    picked[1] = (picked[1] + 1) % 2
+    rows = {(r["split"], r["robot"]): r for r in table(d, picked)}
+    assert rows[("seen", "franka")]["accuracy"] == 1.0
+    assert rows[("seen", "piperx")]["accuracy"] == 0.5
+    whole = rows[(POOLED, POOLED)]
+    assert whole["decisions"] == 4 and whole["accuracy"] == 0.75
+    assert whole["chance"] == pytest.approx((1 / 3 + 1 / 3 + 1 / 2 + 1 / 2) / 4, abs=1e-4)

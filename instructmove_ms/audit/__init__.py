@@ -127,9 +127,8 @@ def run(
     if pixel_scenes:
         from . import pixels  # torch and the renderer, only when asked
 
-        seen, losses = pixels.judge(
-            stored, out / "pixels", pixel_scenes, sampler, version, folder, progress
-        )
+        cache = out / "pixels"
+        seen, losses = pixels.judge(cache, pixel_scenes, sampler, version, folder, progress)
         found += seen
         about["pixel adversary's training loss per epoch"] = [round(v, 3) for v in losses]
     about = {

@@ -20,11 +20,10 @@ def _load_policy(spec: str, args: argparse.Namespace):
 
     if spec in REFERENCE_POLICIES:
         return REFERENCE_POLICIES[spec]()
-    if spec == GROUNDED or spec.startswith(f"{GROUNDED}:"):
-        from instructmove_ms.grounding import CHECKPOINT
+    if spec.startswith(f"{GROUNDED}:"):
         from instructmove_ms.policies import GroundedPolicy
 
-        return GroundedPolicy(spec.partition(":")[2] or CHECKPOINT)
+        return GroundedPolicy(spec.partition(":")[2])
     if spec.startswith(SERVED):
         from instructmove_ms.remote import RemotePolicy
 
@@ -40,7 +39,7 @@ def _load_policy(spec: str, args: argparse.Namespace):
     if not name:
         raise ValueError(
             f"unknown policy {spec!r}; allowed: {', '.join(sorted(REFERENCE_POLICIES))}, "
-            "grounded[:CHECKPOINT], ws://HOST:PORT, zmq://HOST:PORT or MODULE:CLASS"
+            "grounded:CHECKPOINT, ws://HOST:PORT, zmq://HOST:PORT or MODULE:CLASS"
         )
     try:
         found = importlib.import_module(module)

@@ -13,16 +13,22 @@ def _cmd_train(args: argparse.Namespace) -> int:
     from instructmove_ms.grounding.training import Schedule, choose, fit
 
     out = Path(args.out)
-    schedule = Schedule(epochs=args.epochs, seed=args.seed, text=not args.image_only)
+    schedule = Schedule(
+        epochs=args.epochs, seed=args.seed, threads=args.threads, text=not args.image_only
+    )
     taught = scenes.training(Path(args.cache), args.scenes, args.sampler)
     model, losses = fit(taught, schedule, out)
     print(f"checkpoint: {out}; loss per epoch: {', '.join(f'{v:.3f}' for v in losses)}")
     if args.judge:
         judged = scenes.stored(Path(args.cache), args.set_version)
         rows = judge.table(judged, choose(model, judged))
-        write_json(out.with_suffix(".json"), {"losses": losses, "stored sets": rows})
-        write_text(out.with_suffix(".md"), judge.markdown(rows) + "\n")
+        conditions = judge.counterfactuals(model, judged, args.judge, args.set_version)
+        found = {"losses": losses, "stored sets": rows, "conditions": conditions}
+        write_json(out.with_suffix(".json"), found)
+        tables = [judge.markdown(rows), judge.markdown(conditions)]
+        write_text(out.with_suffix(".md"), "\n\n".join(tables) + "\n")
         print(judge.markdown([r for r in rows if r["robot"] == judge.POOLED]))
+        print(tables[1])
     return 0
 
 
@@ -53,14 +59,23 @@ def add_parsers(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--epochs", type=int, default=Schedule.epochs)
     p.add_argument("--seed", type=int, default=Schedule.seed, help="same seed, same model")
     p.add_argument(
+        "--threads",
+        type=int,
+        default=Schedule.threads,
+        help=f"torch's CPU threads (default {Schedule.threads}; part of what fixes the model)",
+    )
+    p.add_argument(
         "--image-only",
         action="store_true",
         help="never read the instruction (the audit's pixel adversary: the image-only twin)",
     )
     p.add_argument(
         "--judge",
-        action="store_true",
-        help="also measure its choices on the stored sets (writes CHECKPOINT.json and .md)",
+        type=int,
+        default=0,
+        metavar="N",
+        help="also measure its choices on the stored sets, and on their first N episodes "
+        "under every condition (writes CHECKPOINT.json and .md)",
     )
     _add_set_version(p)
     p.set_defaults(func=_cmd_train)

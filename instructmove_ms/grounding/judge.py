@@ -6,7 +6,12 @@ from collections import defaultdict
 
 import numpy as np
 
+from ..audit.choices import decisions
+from ..episode import CONDITIONS, EpisodeSpec
+from ..heldout import evaluator_config, load_set
+from ..readers.material import stored_sets
 from .crops import Decisions
+from .training import choose
 
 #: The robot and split of rows that pool them.
 POOLED = "pooled"
@@ -42,14 +47,82 @@ def table(d: Decisions, picked: np.ndarray) -> list[dict]:
 
 
 def markdown(rows: list[dict]) -> str:
-    """``table``'s rows as a Markdown table."""
-    lines = [
-        "| family | kind | split | robot | decisions | accuracy | chance |",
-        "|---|---|---|---|---|---|---|",
-    ]
-    lines += [
-        f"| {r['family']} | {r['kind']} | {r['split']} | {r['robot']} | {r['decisions']} | "
-        f"{r['accuracy']:.3f} | {r['chance']:.3f} |"
-        for r in rows
-    ]
+    """Rows of ``table`` or ``counterfactuals`` as a Markdown table."""
+    keys = list(rows[0])
+
+    def shown(v) -> str:
+        return f"{v:.3f}" if isinstance(v, float) else "" if v is None else str(v)
+
+    lines = ["| " + " | ".join(keys) + " |", "|" + "---|" * len(keys)]
+    lines += ["| " + " | ".join(shown(r[k]) for k in keys) + " |" for r in rows]
     return "\n".join(lines)
+
+
+def _instructed(part: Decisions, specs: list[EpisodeSpec]) -> tuple[np.ndarray, np.ndarray]:
+    """(instruction, answer or -1) of each decision of ``part`` under ``specs``, the same
+    scenes in the same order with another condition's instruction and goal."""
+    texts, answers = [], []
+    for spec in specs:
+        for _, options, goal in decisions(spec, goal=False):
+            texts.append(spec.instruction)
+            answers.append(options.index(goal) if goal in options else -1)
+    if len(answers) != len(part):
+        raise ValueError(f"{len(answers)} decisions under the condition, {len(part)} rendered")
+    return np.array(texts), np.array(answers)
+
+
+def counterfactuals(
+    model, judged: Decisions, episodes: int, version: int | None = None
+) -> list[dict]:
+    """Per family, kind and condition, on the first ``episodes`` of every stored set of
+    ``version`` (``judged``: all of them, rendered): how often ``model`` picks the normal
+    episode's goal and the condition's own (``None`` where it has none), against chance.
+    The scenes are the normal episodes' (a condition changes only the words), so their
+    crops serve every condition."""
+    counts: dict[tuple, np.ndarray] = defaultdict(lambda: np.zeros(4))
+    for env_id, robot, split in stored_sets(version):
+        first = np.nonzero(
+            (judged.robot == robot) & (judged.split == split) & (judged.family == _family(env_id))
+        )[0]
+        specs = load_set(env_id, robot, split, version=version)[:episodes]
+        rows = first[: sum(len(decisions(s)) for s in specs)]
+        part = judged.take(rows)
+        for condition in CONDITIONS:
+            variants = [
+                e.spec
+                for e in evaluator_config(
+                    env_id, robot, split, condition, episodes, version=version
+                ).episodes
+            ]
+            texts, answers = _instructed(part, variants)
+            asked = Decisions(**{**part.__dict__, "instruction": texts})
+            picked = choose(model, asked)
+            for i, kind in enumerate(part.kind):
+                c = counts[(str(part.family[i]), str(kind), condition)]
+                c += [
+                    1,
+                    picked[i] == part.answer[i],
+                    answers[i] >= 0 and picked[i] == answers[i],
+                    1 / part.count[i],
+                ]
+    rows_out = []
+    for (family, kind, condition), (n, normal, own, chance) in sorted(counts.items()):
+        has_goal = condition in ("normal", "alternative_target")
+        rows_out.append(
+            {
+                "family": family,
+                "kind": kind,
+                "condition": condition,
+                "decisions": int(n),
+                "normal goal": round(normal / n, 4),
+                "condition's goal": round(own / n, 4) if has_goal else None,
+                "chance": round(chance / n, 4),
+            }
+        )
+    return rows_out
+
+
+def _family(env_id: str) -> str:
+    from ..tasks import TASKS
+
+    return TASKS[env_id].family

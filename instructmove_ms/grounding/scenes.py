@@ -35,13 +35,19 @@ def _kept(folder: Path, stem: str, specs, renderer: SceneRenderer, env_id: str) 
 
 
 def stored(
-    cache: Path, version: int | None = None, folder: Path | None = None, progress: bool = True
+    cache: Path,
+    version: int | None = None,
+    folder: Path | None = None,
+    progress: bool = True,
+    families: tuple[str, ...] | None = None,
 ) -> Decisions:
-    """Every decision of the stored sets of ``version`` (or under ``folder``), rendered."""
+    """Every decision of the stored sets of ``version`` (or under ``folder``; ``families``:
+    of those env ids only), rendered."""
     renderer = SceneRenderer()
+    sets = [s for s in stored_sets(version) if families is None or s[0] in families]
     try:
         parts = []
-        shown = tqdm(list(stored_sets(version)), desc="stored sets", disable=not progress)
+        shown = tqdm(sets, desc="stored sets", disable=not progress)
         for env_id, robot, split in shown:
             specs = load_set(env_id, robot, split, folder, version)
             where = Path(cache) / "sets" / env_id / robot

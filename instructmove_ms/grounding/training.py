@@ -33,7 +33,7 @@ class Schedule:
     learning_rate: float = 2e-3
     weight_decay: float = 1e-4
     seed: int = 0
-    threads: int = 2  # torch's CPU threads
+    threads: int = 1  # torch's CPU threads (more spin idle beside other busy processes)
     text: bool = False  # whether the chooser reads the instruction
 
     def __post_init__(self) -> None:
@@ -63,7 +63,7 @@ def _resumed(
         return []
     state = torch.load(path, weights_only=True)
     same = _resumable(state["schedule"]) == _resumable(asdict(schedule))
-    same = same and state.get("data") == data
+    same = same and state.get("data") == data and "optimizer" in state  # not a shipped one
     if not same or len(state["losses"]) > schedule.epochs:
         return []
     model.load_state_dict(state["model"])
@@ -129,6 +129,16 @@ def fit(
         torch.set_num_threads(threads)
     model.eval()
     return model, losses
+
+
+def slim(path: Path, to: Path) -> Path:
+    """Write the checkpoint at ``path`` to ``to`` with what choosing needs alone (the
+    model, its vocabulary, how it was trained), atomically."""
+    state = torch.load(path, weights_only=True)
+    kept = {k: state[k] for k in ("model", "vocabulary", "schedule", "losses")}
+    with atomic_path(to) as tmp:
+        torch.save(kept, tmp)
+    return Path(to)
 
 
 def load(path: Path) -> Chooser:
