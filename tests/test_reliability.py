@@ -139,6 +139,18 @@ def _bad_inputs(tmp_path: Path, demo: Path) -> dict[str, tuple[list[str], str]]:
             [*evaluate, "--policy", "ws://127.0.0.1:1", "--obs-format", "groot", *out],
             "speaks the groot format",
         ),
+        "no checkpoint": (
+            [*evaluate, "--policy", f"grounded:{tmp_path / 'none.pt'}", *out],
+            f"no grounding checkpoint at {tmp_path / 'none.pt'}",
+        ),
+        "no training scenes": (
+            ["train-grounding", "--scenes", "0", "--out", str(tmp_path / "g.pt")],
+            "training scenes must be 1 or more, got 0",
+        ),
+        "pixels without sets": (
+            ["audit", "--sampler", "2", "--fresh-scenes", "1", "--pixel-scenes", "5", *out],
+            "the pixel adversary judges stored sets",
+        ),
         "zero episodes": ([*evaluate, "--policy", "random", "--episodes", "0", *out], "got 0"),
         "negative episodes": ([*evaluate, "--policy", "random", "--episodes", "-1", *out], "-1"),
         "spec lacks a field": (
