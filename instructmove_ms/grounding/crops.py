@@ -1,12 +1,13 @@
-"""Each option of each decision as the policy's cameras show it at the first step.
+"""Every object of a scene as the policy's cameras show it at the first step.
 
-A scene is reset in an rgb env at the policy's 224 x 224; every option (a candidate object
-or receptacle) is located in each camera by segmentation and cut out as a square around it,
-resized to ``CROP`` x ``CROP``, with the option's mask as a fourth channel (so a crop that
-also holds a neighbour says which object is meant) and where the crop lay (``GEOMETRY``).
-Locating by segmentation is given: what is learned from the crops is choosing, not
-detecting. Decisions are stored in shards (``Decisions.save``) that a rerun reuses while the
-episodes they were rendered from are unchanged.
+A scene is reset in an rgb env at the policy's 224 x 224; every object is located in each
+camera by segmentation and cut out as a square around it, resized to ``CROP`` x ``CROP``,
+with the object's mask as a fourth channel (so a crop that also holds a neighbour says which
+object is meant) and where the crop lay (``GEOMETRY``). A decision holds its options' crops
+first (the candidates, or the receptacles), then the scene's other objects (a spatial
+reference among them). Locating by segmentation is given: what is learned from the crops is
+choosing, not detecting. Decisions are stored in shards (``Decisions.save``) that a rerun
+reuses while the episodes they were rendered from are unchanged.
 """
 
 from __future__ import annotations
