@@ -9,7 +9,6 @@ the report (``report``). A benchmark version passes when no adversary beats chan
 
 from __future__ import annotations
 
-from collections import defaultdict
 from collections.abc import Sequence
 from pathlib import Path
 
@@ -18,7 +17,7 @@ from ..sampler import SAMPLERS
 from ..tasks import TASKS
 from ..validation import check_choice
 from . import report, rules
-from .choices import Choice
+from .choices import Choice, by_decision
 from .scenes import choices, fresh_choices, sampler_of, stored_specs, training_choices
 from .stats import Cell, cells
 
@@ -29,13 +28,6 @@ TRAINING_SCENES = 300
 #: Rendered training scenes per family and robot the pixel adversary learns from, for the
 #: published figures (the audit runs it only when asked: it renders for tens of minutes).
 PIXEL_SCENES = 400
-
-
-def _groups(choices: Sequence[Choice]) -> dict[tuple[str, str], list[Choice]]:
-    out: dict[tuple[str, str], list[Choice]] = defaultdict(list)
-    for c in choices:
-        out[(c.family, c.kind)].append(c)
-    return out
 
 
 def _adversaries(
@@ -67,10 +59,10 @@ def judge(
     """(cells of the stored and the ``fresh`` choices, cells of the rules on the
     ``training`` choices): every rule and, with ``trees``, the learned adversaries
     (cross-validated within the choices judged, and trained on ``training``)."""
-    taught = _groups(training)
+    taught = by_decision(training)
     found: list[Cell] = []
     for source, judged in (("stored", stored), ("fresh", fresh)):
-        for key, group in _groups(judged).items():
+        for key, group in by_decision(judged).items():
             found += _adversaries(group, taught.get(key), trees, source)
     on_training = [
         c

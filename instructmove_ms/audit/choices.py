@@ -11,6 +11,8 @@ verdict: adversaries see ``Choice.options`` only, and only scoring reads ``Choic
 from __future__ import annotations
 
 import math
+from collections import defaultdict
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -148,3 +150,11 @@ def choices_of(spec: EpisodeSpec, catalog: Catalog) -> list[Choice]:
         )
         for kind, indices, answer in decisions(spec)
     ]
+
+
+def by_decision(choices: Sequence[Choice]) -> dict[tuple[str, str], list[Choice]]:
+    """``choices`` grouped by (family, kind), each group in their order."""
+    out: dict[tuple[str, str], list[Choice]] = defaultdict(list)
+    for c in choices:
+        out[(c.family, c.kind)].append(c)
+    return out

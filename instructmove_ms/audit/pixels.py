@@ -24,7 +24,7 @@ from ..grounding import scenes
 from ..grounding.crops import GEOMETRY, Decisions
 from ..grounding.training import Schedule, choose, fit
 from . import learned
-from .choices import CATEGORICAL, Choice, Option
+from .choices import CATEGORICAL, Choice, Option, by_decision
 from .stats import Cell, cells
 
 #: The network's name in the report.
@@ -74,13 +74,6 @@ def statistics(d: Decisions) -> list[Choice]:
     return found
 
 
-def _by_group(choices: list[Choice]) -> dict[tuple[str, str], list[int]]:
-    groups: dict[tuple[str, str], list[int]] = {}
-    for i, c in enumerate(choices):
-        groups.setdefault((c.family, c.kind), []).append(i)
-    return groups
-
-
 def judge(
     cache: Path,
     training_scenes: int,
@@ -100,16 +93,15 @@ def judge(
     name = "-".join(sorted(families)) if families else "all"
     checkpoint = Path(cache) / f"pixels-sampler{sampler}-{training_scenes}-{name}.pt"
     model, losses = fit(taught, schedule, checkpoint, progress)
-    correct = (choose(model, judged) == judged.answer).astype(float)
     stored, trained = statistics(judged), statistics(taught)
-    taught_by = _by_group(trained)
+    picked = choose(model, judged)
+    correct = {id(c): float(p == c.answer) for c, p in zip(stored, picked, strict=True)}
+    taught_by = by_decision(trained)
     found: list[Cell] = []
-    for key, rows in sorted(_by_group(stored).items()):
-        group = [stored[i] for i in rows]
-        found += cells(group, correct[rows].tolist(), NAME)
+    for key, group in sorted(by_decision(stored).items()):
+        found += cells(group, [correct[id(c)] for c in group], NAME)
         if key in taught_by:
-            train = [trained[i] for i in taught_by[key]]
-            trees = learned.trained_on(train, group)
+            trees = learned.trained_on(taught_by[key], group)
             found += cells(group, trees, "pixel statistics, trees trained")
         found += cells(group, learned.cross_validated(group), "pixel statistics, trees within")
     return found, losses

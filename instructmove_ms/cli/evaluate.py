@@ -182,8 +182,9 @@ def add_parsers(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--split", default="seen", help="seen, unseen_instance or unseen_category")
     p.add_argument(
         "--policy",
-        help="oracle, blind, scripted, scripted-blind, random, ws://HOST:PORT (openpi's "
-        "server), zmq://HOST:PORT (GR00T's, with --obs-format groot) or MODULE:CLASS",
+        help="oracle, blind, scripted, scripted-blind, random, grounded[:CHECKPOINT] (the "
+        "learned grounding model, the planner acting), ws://HOST:PORT (openpi's server), "
+        "zmq://HOST:PORT (GR00T's, with --obs-format groot) or MODULE:CLASS",
     )
     p.add_argument("--out", help="folder for the reports (resumable)")
     p.add_argument("--robot", default=None, help="robot uid (default: the task's)")
