@@ -10,7 +10,7 @@ import torch
 from instructmove_ms.audit.pixels import NAME, judge, statistics
 from instructmove_ms.grounding import scenes
 from instructmove_ms.grounding.crops import CAMERAS, CROP, GEOMETRY, Decisions, crop
-from instructmove_ms.grounding.training import Schedule, choose, fit
+from instructmove_ms.grounding.training import Schedule, choose, fit, load, slim
 from instructmove_ms.heldout import load_set
 
 
@@ -84,8 +84,8 @@ def test_reading_the_instruction_finds_the_option_only_the_words_name():
 
 
 def test_the_chooser_learns_a_signal_planted_in_the_pixels():
-    model, losses = fit(_planted(64, 0), Schedule(epochs=6, batch=16), progress=False)
-    assert losses[-1] < 0.5 * losses[0]
+    model, history = fit(_planted(64, 0), Schedule(epochs=6, batch=16), progress=False)
+    assert history.losses[-1] < 0.5 * history.losses[0]
     held_out = _planted(60, 1)
     assert (choose(model, held_out) == held_out.answer).mean() > 0.9
 
@@ -95,12 +95,34 @@ def test_training_resumes_to_the_model_an_uninterrupted_run_ends_with(tmp_path):
     whole, _ = fit(d, Schedule(epochs=3, batch=8), progress=False)
     checkpoint = tmp_path / "model.pt"
     fit(d, Schedule(epochs=1, batch=8), checkpoint, progress=False)
-    resumed, losses = fit(d, Schedule(epochs=3, batch=8), checkpoint, progress=False)
-    assert len(losses) == 3
+    resumed, history = fit(d, Schedule(epochs=3, batch=8), checkpoint, progress=False)
+    assert len(history.losses) == len(history.validation) == 3
     for a, b in zip(whole.state_dict().values(), resumed.state_dict().values(), strict=True):
         assert torch.allclose(a.float(), b.float(), atol=1e-5)
-    other, again = fit(_planted(32, 3), Schedule(epochs=3, batch=8), checkpoint, progress=False)
-    assert len(again) == 3 and again[0] != losses[0]  # other decisions: trained anew
+    _, again = fit(_planted(32, 3), Schedule(epochs=3, batch=8), checkpoint, progress=False)
+    assert len(again.losses) == 3 and again.losses[0] != history.losses[0]  # trained anew
+
+
+def test_the_model_kept_is_the_epoch_best_on_the_held_out_seeds(tmp_path):
+    d = _planted(40, 10)
+    schedule = Schedule(epochs=4, batch=8, held_out=4)
+    train, held = schedule.split(d)
+    assert set(d.seed[held]) == set(range(0, 40, 4)) and not set(d.seed[train]) & set(d.seed[held])
+    checkpoint = tmp_path / "model.pt"
+    model, history = fit(d, schedule, checkpoint, progress=False)
+    assert len(history.validation) == len(history.accuracy) == 4
+    assert history.validation[history.kept] == min(history.validation)
+    held_out = d.take(held)
+    assert (choose(model, held_out) == held_out.answer).mean() == history.accuracy[history.kept]
+    slim(checkpoint, tmp_path / "slim.pt")
+    assert (choose(load(tmp_path / "slim.pt"), d) == choose(model, d)).all()
+    with pytest.raises(ValueError, match="held_out=4 leaves 0 decisions to train on"):
+        fit(d.take(held), schedule, progress=False)
+    with pytest.raises(ValueError, match="held_out must be 0 .none. or 2 or more, got 1"):
+        Schedule(held_out=1)
+    torch.save({"model": {"other": torch.zeros(1)}, "vocabulary": None}, tmp_path / "old.pt")
+    with pytest.raises(ValueError, match="does not fit this version's network"):
+        load(tmp_path / "old.pt")
 
 
 def test_decisions_keep_their_rows_and_refuse_other_episodes(tmp_path):
@@ -129,7 +151,14 @@ def test_rendered_training_scenes_hold_every_option_of_every_decision(tmp_path):
     mtimes = {p: p.stat().st_mtime_ns for p in tmp_path.rglob("*.npz")}
     again = scenes.training(tmp_path, 2, families=(family,), progress=False)
     assert again.fingerprint() == d.fingerprint()
+    both = scenes.training(tmp_path, 2, families=(family,), progress=False, alternatives=True)
     assert {p: p.stat().st_mtime_ns for p in tmp_path.rglob("*.npz")} == mtimes  # kept
+    normal, aimed = both.take(range(0, 4)), both.take(range(4, 8))  # one robot's shard
+    assert normal.fingerprint() == d.take(range(0, 4)).fingerprint()
+    assert (aimed.crops == normal.crops).all()  # the same pictures, other words
+    assert (aimed.instruction != normal.instruction).all()
+    goals = normal.answer.reshape(2, 2)  # (object, receptacle) of each scene
+    assert (aimed.answer.reshape(2, 2) != goals).any(axis=1).all()  # another goal each
 
 
 def test_the_pixel_adversaries_judge_every_stored_decision(tmp_path, monkeypatch):
@@ -171,8 +200,9 @@ def test_a_trained_checkpoint_loads_and_its_choice_is_picked_up(tmp_path):
     family = "PickAttribute-InstructMove"
     taught = scenes.training(tmp_path / "renders", 3, families=(family,), progress=False)
     checkpoint = tmp_path / "grounded.pt"
-    _, losses = fit(taught, Schedule(epochs=8, batch=4, text=True), checkpoint, progress=False)
-    assert losses[-1] < losses[0]
+    schedule = Schedule(epochs=8, batch=4, text=True, held_out=0)
+    _, history = fit(taught, schedule, checkpoint, progress=False)
+    assert history.losses[-1] < history.losses[0]
     policy = GroundedPolicy(checkpoint)
     spec = load_set(family, "franka", "seen")[0]
     env = gym.make(

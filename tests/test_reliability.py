@@ -15,6 +15,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+import torch
 from websockets.sync.server import serve
 
 from instructmove_ms import heldout
@@ -127,6 +128,8 @@ def _bad_inputs(tmp_path: Path, demo: Path) -> dict[str, tuple[list[str], str]]:
     misnamed = json.loads(json.dumps(config))
     misnamed["episodes"][0]["reset_kwargs"]["options"]["episode"]["instruction"] = "pick it up"
     (tmp_path / "misnamed.json").write_text(json.dumps(misnamed))
+    earlier = tmp_path / "earlier.pt"
+    torch.save({"model": {"crop.0.weight": torch.zeros(1)}, "vocabulary": None}, earlier)
     out = ["--out", str(tmp_path / "out")]
     evaluate = ["eval", "--task", TASK, "--robot", "franka"]
     convert = ["demos", "convert", "--traj"]
@@ -142,6 +145,14 @@ def _bad_inputs(tmp_path: Path, demo: Path) -> dict[str, tuple[list[str], str]]:
         "no checkpoint": (
             [*evaluate, "--policy", f"grounded:{tmp_path / 'none.pt'}", *out],
             f"no grounding checkpoint at {tmp_path / 'none.pt'}",
+        ),
+        "checkpoint of an earlier network": (
+            [*evaluate, "--policy", f"grounded:{earlier}", *out],
+            f"the grounding checkpoint at {earlier} does not fit this version's network",
+        ),
+        "held-out seeds of one": (
+            ["train-grounding", "--held-out", "1", "--out", str(tmp_path / "g.pt")],
+            "held_out must be 0 (none) or 2 or more, got 1",
         ),
         "no training scenes": (
             ["train-grounding", "--scenes", "0", "--out", str(tmp_path / "g.pt")],

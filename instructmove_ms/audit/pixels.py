@@ -92,7 +92,7 @@ def judge(
     judged = scenes.stored(cache, version, folder, progress, families)
     name = "-".join(sorted(families)) if families else "all"
     checkpoint = Path(cache) / f"pixels-sampler{sampler}-{training_scenes}-{name}.pt"
-    model, losses = fit(taught, schedule, checkpoint, progress)
+    model, history = fit(taught, schedule, checkpoint, progress)
     stored, trained = statistics(judged), statistics(taught)
     picked = choose(model, judged)
     correct = {id(c): float(p == c.answer) for c, p in zip(stored, picked, strict=True)}
@@ -104,4 +104,4 @@ def judge(
             trees = learned.trained_on(taught_by[key], group)
             found += cells(group, trees, "pixel statistics, trees trained")
         found += cells(group, learned.cross_validated(group), "pixel statistics, trees within")
-    return found, losses
+    return found, history.losses

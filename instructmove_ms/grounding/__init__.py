@@ -13,5 +13,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
+#: Training scenes per family and robot the shipped checkpoint learned from.
+SCENES = 1000
+
 #: The shipped checkpoint ``--policy grounded`` loads by default.
 CHECKPOINT = Path(__file__).parent / "checkpoints" / "grounded.pt"

@@ -15,7 +15,7 @@ from __future__ import annotations
 import hashlib
 import math
 from collections.abc import Sequence
-from dataclasses import dataclass, fields
+from dataclasses import dataclass, fields, replace
 from pathlib import Path
 
 import numpy as np
@@ -109,6 +109,19 @@ class Decisions:
         )
         per = {f.name: getattr(self, f.name)[rows] for f in fields(self) if f.name in _PER}
         return Decisions(**per, crops=self.crops[options], geometry=self.geometry[options])
+
+    def instructed(self, specs: Sequence[EpisodeSpec]) -> Decisions:
+        """These decisions with the instructions and answers (-1 where an episode has no
+        goal among a decision's options) of ``specs``: the same scenes, in the same order,
+        under another condition. The pictures stay, since a condition changes only words."""
+        texts, answers = [], []
+        for spec in specs:
+            for _, options, goal in decisions(spec, goal=False):
+                texts.append(spec.instruction)
+                answers.append(options.index(goal) if goal in options else -1)
+        if len(answers) != len(self):
+            raise ValueError(f"{len(answers)} decisions under the condition, {len(self)} rendered")
+        return replace(self, instruction=np.array(texts), answer=np.array(answers))
 
     def save(self, path: Path, source: str) -> Path:
         """Write the decisions and the ``digest`` of their episodes to ``path`` atomically."""

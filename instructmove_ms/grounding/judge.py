@@ -7,7 +7,7 @@ from collections import defaultdict
 import numpy as np
 
 from ..audit.choices import decisions
-from ..episode import CONDITIONS, EpisodeSpec
+from ..episode import CONDITIONS
 from ..heldout import evaluator_config, load_set
 from ..readers.material import stored_sets
 from .crops import Decisions
@@ -58,19 +58,6 @@ def markdown(rows: list[dict]) -> str:
     return "\n".join(lines)
 
 
-def _instructed(part: Decisions, specs: list[EpisodeSpec]) -> tuple[np.ndarray, np.ndarray]:
-    """(instruction, answer or -1) of each decision of ``part`` under ``specs``, the same
-    scenes in the same order with another condition's instruction and goal."""
-    texts, answers = [], []
-    for spec in specs:
-        for _, options, goal in decisions(spec, goal=False):
-            texts.append(spec.instruction)
-            answers.append(options.index(goal) if goal in options else -1)
-    if len(answers) != len(part):
-        raise ValueError(f"{len(answers)} decisions under the condition, {len(part)} rendered")
-    return np.array(texts), np.array(answers)
-
-
 def counterfactuals(
     model, judged: Decisions, episodes: int, version: int | None = None
 ) -> list[dict]:
@@ -94,9 +81,8 @@ def counterfactuals(
                     env_id, robot, split, condition, episodes, version=version
                 ).episodes
             ]
-            texts, answers = _instructed(part, variants)
-            asked = Decisions(**{**part.__dict__, "instruction": texts})
-            picked = choose(model, asked)
+            asked = part.instructed(variants)
+            answers, picked = asked.answer, choose(model, asked)
             for i, kind in enumerate(part.kind):
                 c = counts[(str(part.family[i]), str(kind), condition)]
                 c += [

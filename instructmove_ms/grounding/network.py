@@ -34,8 +34,9 @@ def _encoder() -> nn.Module:
 
 
 class Reader(nn.Module):
-    """An instruction as one vector: each word's learned vector plus its trigrams', read in
-    order by a bidirectional GRU and averaged over the words."""
+    """An instruction as two vectors: each word's learned vector plus its trigrams', read in
+    order by a bidirectional GRU, then averaged over the words (what the instruction asks)
+    and pooled by a learned attention over them (the words that name a reference)."""
 
     def __init__(self, vocabulary: Vocabulary) -> None:
         super().__init__()
@@ -43,20 +44,26 @@ class Reader(nn.Module):
         self.grams = nn.Embedding(BUCKETS, WIDTH, padding_idx=0)
         self.gru = nn.GRU(WIDTH, WIDTH, batch_first=True, bidirectional=True)
         self.out = nn.Linear(2 * WIDTH, WIDTH)
+        self.focus = nn.Linear(2 * WIDTH, 1)
+        self.query = nn.Linear(2 * WIDTH, WIDTH)
 
-    def forward(self, word_ids: torch.Tensor, gram_ids: torch.Tensor) -> torch.Tensor:
+    def forward(
+        self, word_ids: torch.Tensor, gram_ids: torch.Tensor
+    ) -> tuple[torch.Tensor, torch.Tensor]:
         present = (gram_ids > 0).sum(-1, keepdim=True).clamp(min=1)
         x = self.words(word_ids) + self.grams(gram_ids).sum(2) / present
         read, _ = self.gru(x)
-        mask = (word_ids > 0).unsqueeze(-1).float()
+        mask = (word_ids > 0).unsqueeze(-1)
         pooled = (read * mask).sum(1) / mask.sum(1).clamp(min=1)
-        return torch.relu(self.out(pooled))
+        focus = torch.softmax(self.focus(read).masked_fill(~mask, -1e9), dim=1)
+        return torch.relu(self.out(pooled)), self.query((focus * read).sum(1))
 
 
 class Chooser(nn.Module):
     """Scores (batch x options) of padded decisions; padding scores minus infinity. With a
     ``vocabulary`` it reads the instruction too: the words weigh each option, and point at
-    the scene object they name as a reference, whose place each option is compared with."""
+    the scene object (never an option) they name as a reference, whose place each option is
+    compared with."""
 
     def __init__(self, vocabulary: Vocabulary | None = None) -> None:
         super().__init__()
@@ -65,13 +72,22 @@ class Chooser(nn.Module):
         self.camera = nn.Sequential(nn.Linear(WIDTH + len(GEOMETRY), WIDTH), nn.ReLU())
         self.object = nn.Sequential(nn.Linear(CAMERAS * WIDTH, WIDTH), nn.ReLU())
         place = CAMERAS * len(GEOMETRY)
-        extra = 0 if vocabulary is None else 2 * WIDTH + place
+        extra = 0 if vocabulary is None else 2 * WIDTH + 2 * place
         self.score = nn.Sequential(
             nn.Linear(2 * WIDTH + extra, WIDTH), nn.ReLU(), nn.Linear(WIDTH, 1)
         )
         if vocabulary is not None:
             self.reader = Reader(vocabulary)
             self.pointer = nn.Linear(WIDTH, WIDTH)
+
+    def _reference(self, h: torch.Tensor, query: torch.Tensor, inputs: Inputs) -> torch.Tensor:
+        """Where the object the words point at lay (B, CAMERAS * len(GEOMETRY)): a soft
+        choice among the scene's objects that are not options (zeros where there are none)."""
+        others = inputs.objects.clone()
+        others[:, : inputs.options.shape[1]] &= ~inputs.options
+        named = torch.einsum("bnw,bw->bn", h, self.pointer(query))
+        weight = torch.softmax(named.masked_fill(~others, -1e9), dim=1) * others
+        return torch.einsum("bn,bnp->bp", weight, inputs.geometry.flatten(2))
 
     def forward(self, inputs: Inputs) -> torch.Tensor:
         b, n, c = inputs.crops.shape[:3]
@@ -82,13 +98,10 @@ class Chooser(nn.Module):
         mean = (h[:, :m] * options).sum(1, keepdim=True) / options.sum(1, keepdim=True)
         parts = [h[:, :m], h[:, :m] - mean]
         if self.vocabulary is not None:
-            t = self.reader(inputs.words, inputs.grams)
-            named = torch.einsum("bnw,bw->bn", h, self.pointer(t))
-            weight = torch.softmax(named.masked_fill(~inputs.objects, float("-inf")), dim=1)
-            place = inputs.geometry.flatten(2)
-            reference = torch.einsum("bn,bnp->bp", weight, place)
+            t, query = self.reader(inputs.words, inputs.grams)
+            away = inputs.geometry[:, :m].flatten(2) - self._reference(h, query, inputs)[:, None]
             words = t[:, None].expand(-1, m, -1)
-            parts += [words, h[:, :m] * words, place[:, :m] - reference[:, None]]
+            parts += [words, h[:, :m] * words, away, away.abs()]
         scores = self.score(torch.cat(parts, dim=-1)).squeeze(-1)
         return scores.masked_fill(~inputs.options, float("-inf"))
 

@@ -63,9 +63,12 @@ def training(
     sampler: int = SAMPLER,
     progress: bool = True,
     families: tuple[str, ...] | None = None,
+    alternatives: bool = False,
 ) -> Decisions:
     """Every decision of the first ``scenes`` training seeds of each family (``families``:
-    those env ids only) on each of its robots, as ``sampler`` draws them, rendered."""
+    those env ids only) on each of its robots, as ``sampler`` draws them, rendered; with
+    ``alternatives``, each also under its ``alternative_target`` instruction (the same
+    pictures, words that name another goal: what only a reader can learn from)."""
     if scenes < 1:
         raise ValueError(f"training scenes must be 1 or more, got {scenes}")
     renderer = SceneRenderer(split="train", sampler=sampler)
@@ -82,7 +85,11 @@ def training(
             env = renderer.env(env_id, robot).unwrapped
             specs = [env.sample_episode(s) for s in range(start, min(start + SHARD, scenes))]
             where = Path(cache) / f"train-sampler{sampler}" / env_id / robot
-            parts.append(_kept(where, f"{start:06d}", specs, renderer, env_id))
+            part = _kept(where, f"{start:06d}", specs, renderer, env_id)
+            parts.append(part)
+            if alternatives:
+                aimed = [env.under_condition(s, "alternative_target") for s in specs]
+                parts.append(part.instructed(aimed))
         return Decisions.join(parts)
     finally:
         renderer.close()

@@ -1,15 +1,17 @@
 """Training a chooser on rendered decisions, resumable epoch by epoch, and scoring it.
 
-A fixed seed gives the same model on one machine: the initial weights come from it and each
-epoch's order from (seed, epoch), so a run resumed from its checkpoint after any epoch ends
-where an uninterrupted one does. Across machines the weights differ in their last bits
-(torch picks CPU kernels at run time); figures measured with them are measurements, never
-identities.
+Every ``held_out``-th training seed is kept out of training to validate on: after each
+epoch the model is scored there, and the model kept is the one of the epoch with the lowest
+validation loss (the stored sets are never looked at). A fixed seed gives the same model on
+one machine: the initial weights come from it and each epoch's order from (seed, epoch), so
+a run resumed from its checkpoint after any epoch ends where an uninterrupted one does.
+Across machines the weights differ in their last bits (torch picks CPU kernels at run
+time); figures measured with them are measurements, never identities.
 """
 
 from __future__ import annotations
 
-from dataclasses import asdict, dataclass
+from dataclasses import asdict, dataclass, replace
 from pathlib import Path
 
 import numpy as np
@@ -20,7 +22,7 @@ from tqdm import tqdm
 
 from ..files import atomic_path
 from .crops import Decisions
-from .network import Chooser, batch
+from .network import Chooser, Inputs, batch
 from .text import Vocabulary
 
 
@@ -35,6 +37,8 @@ class Schedule:
     seed: int = 0
     threads: int = 1  # torch's CPU threads (more spin idle beside other busy processes)
     text: bool = False  # whether the chooser reads the instruction
+    held_out: int = 10  # seeds divisible by it validate, never train (0: none; last epoch kept)
+    mirror: bool = True  # mirror each training crop left to right at random (where it lay stays)
 
     def __post_init__(self) -> None:
         for name in ("epochs", "batch", "threads"):
@@ -42,6 +46,35 @@ class Schedule:
                 raise ValueError(f"{name} must be 1 or more, got {getattr(self, name)}")
         if self.learning_rate <= 0:
             raise ValueError(f"learning_rate must be above 0, got {self.learning_rate}")
+        if self.held_out < 0 or self.held_out == 1:
+            raise ValueError(f"held_out must be 0 (none) or 2 or more, got {self.held_out}")
+
+    def split(self, d: Decisions) -> tuple[np.ndarray, np.ndarray]:
+        """The rows of ``d`` to train on and to validate on (whole seeds, so both robots'
+        views of one layout fall on one side)."""
+        validate = (d.seed % self.held_out == 0) if self.held_out else np.zeros(len(d), bool)
+        train, held = np.flatnonzero(~validate), np.flatnonzero(validate)
+        if len(train) == 0 or (self.held_out and len(held) == 0):
+            raise ValueError(
+                f"held_out={self.held_out} leaves {len(train)} decisions to train on and "
+                f"{len(held)} to validate on; give seeds on both sides or held_out=0"
+            )
+        return train, held
+
+
+@dataclass(frozen=True)
+class History:
+    """How a training went: the mean training loss and (with held-out seeds) the mean
+    validation loss and choice accuracy per epoch, and the epoch whose model is kept."""
+
+    losses: list[float]
+    validation: list[float]
+    accuracy: list[float]
+
+    @property
+    def kept(self) -> int:
+        """The epoch (from 0) whose model is kept: the lowest validation loss, else the last."""
+        return int(np.argmin(self.validation)) if self.validation else len(self.losses) - 1
 
 
 def _chunks(order: np.ndarray, size: int) -> list[np.ndarray]:
@@ -55,32 +88,42 @@ def _resumable(schedule: dict) -> dict:
 
 def _resumed(
     path: Path | None, schedule: Schedule, data: str, model: Chooser, optimizer
-) -> list[float]:
-    """The epoch losses of the checkpoint at ``path`` (its state loaded into ``model`` and
-    ``optimizer``) when it was trained on the same ``data`` (a ``Decisions.fingerprint``)
-    and schedule, for no more epochs; else none."""
+) -> tuple[History, dict | None]:
+    """The history and kept model state of the checkpoint at ``path`` (its state loaded into
+    ``model`` and ``optimizer``) when it was trained on the same ``data`` (a
+    ``Decisions.fingerprint``) and schedule, for no more epochs; else an empty start."""
+    empty = History([], [], [])
     if path is None or not path.is_file():
-        return []
+        return empty, None
     state = torch.load(path, weights_only=True)
     same = _resumable(state["schedule"]) == _resumable(asdict(schedule))
     same = same and state.get("data") == data and "optimizer" in state  # not a shipped one
     if not same or len(state["losses"]) > schedule.epochs:
-        return []
+        return empty, None
     model.load_state_dict(state["model"])
     optimizer.load_state_dict(state["optimizer"])
-    return list(state["losses"])
+    history = History(*(list(state[k]) for k in ("losses", "validation", "accuracy")))
+    return history, state["kept"]
 
 
 def save(
-    path: Path, model: Chooser, schedule: Schedule, losses: list[float], data: str, optimizer
+    path: Path,
+    model: Chooser,
+    schedule: Schedule,
+    history: History,
+    kept: dict,
+    data: str,
+    optimizer,
 ) -> Path:
-    """Write the checkpoint atomically, with what resuming needs."""
+    """Write the checkpoint atomically: the model now and the ``kept`` one, with what
+    resuming needs."""
     vocabulary = model.vocabulary
     state = {
         "model": model.state_dict(),
+        "kept": kept,
         "vocabulary": None if vocabulary is None else list(vocabulary.known),
         "schedule": asdict(schedule),
-        "losses": losses,
+        **asdict(history),
         "data": data,
         "optimizer": optimizer.state_dict(),
     }
@@ -89,53 +132,96 @@ def save(
     return path
 
 
+def _mirrored(inputs: Inputs, rng: np.random.Generator) -> Inputs:
+    """``inputs`` with each crop mirrored left to right at random: an object seen mirrored
+    is the same object, so the chooser learns what does not hang on its pose. Where the crop
+    lay (the geometry) is kept, so left and right keep their meaning."""
+    crops = inputs.crops
+    flip = torch.from_numpy(rng.random(crops.shape[:3]) < 0.5)[..., None, None, None]
+    return replace(inputs, crops=torch.where(flip, crops.flip(-1), crops))
+
+
+def _copy(model: Chooser) -> dict:
+    return {k: v.detach().clone() for k, v in model.state_dict().items()}
+
+
+@torch.no_grad()
+def _validated(model: Chooser, d: Decisions, loss_of, size: int = 256) -> tuple[float, float]:
+    """``model``'s mean loss and choice accuracy on ``d``."""
+    model.eval()
+    loss = correct = 0.0
+    for rows in _chunks(np.arange(len(d)), size):
+        inputs, answers = batch(d, rows, model.vocabulary)
+        scores = model(inputs)
+        loss += loss_of(scores, answers).item() * len(rows)
+        correct += (scores.argmax(dim=1) == answers).sum().item()
+    return loss / len(d), correct / len(d)
+
+
 def fit(
     d: Decisions,
     schedule: Schedule | None = None,
     checkpoint: Path | None = None,
     progress: bool = True,
-) -> tuple[Chooser, list[float]]:
-    """A chooser trained to score each decision's answer highest, and its mean loss per
-    epoch; with ``checkpoint``, resumed from it and saved there after every epoch."""
+) -> tuple[Chooser, History]:
+    """A chooser trained to score each decision's answer highest (the epoch kept by
+    validation on held-out seeds), and its history; with ``checkpoint``, resumed from it and
+    saved there after every epoch."""
     if len(d) == 0:
         raise ValueError("no decisions to train on")
     schedule = schedule or Schedule()
+    train, held = schedule.split(d)
+    taught, validating = d.take(train), d.take(held)
     threads = torch.get_num_threads()
     with threadpool_limits(schedule.threads), torch.random.fork_rng():
         torch.set_num_threads(schedule.threads)
         torch.manual_seed(schedule.seed)
-        model = Chooser(Vocabulary.of(list(map(str, d.instruction))) if schedule.text else None)
+        words = list(map(str, taught.instruction))
+        model = Chooser(Vocabulary.of(words) if schedule.text else None)
         optimizer = torch.optim.AdamW(
             model.parameters(), lr=schedule.learning_rate, weight_decay=schedule.weight_decay
         )
         data = d.fingerprint() if checkpoint is not None else ""
-        losses = _resumed(checkpoint, schedule, data, model, optimizer)
+        history, kept = _resumed(checkpoint, schedule, data, model, optimizer)
         loss_of = nn.CrossEntropyLoss()
-        epochs = range(len(losses), schedule.epochs)
-        for epoch in tqdm(epochs, desc="training", disable=not progress, initial=len(losses)):
+        epochs = range(len(history.losses), schedule.epochs)
+        shown = tqdm(epochs, desc="training", disable=not progress, initial=len(history.losses))
+        for epoch in shown:
             model.train()
-            order = np.random.default_rng([schedule.seed, epoch]).permutation(len(d))
+            rng = np.random.default_rng([schedule.seed, epoch])
+            order = rng.permutation(len(taught))
             total = 0.0
             for rows in _chunks(order, schedule.batch):
-                inputs, answers = batch(d, rows, model.vocabulary)
+                inputs, answers = batch(taught, rows, model.vocabulary)
+                if schedule.mirror:
+                    inputs = _mirrored(inputs, rng)
                 loss = loss_of(model(inputs), answers)
                 optimizer.zero_grad()
                 loss.backward()
                 optimizer.step()
                 total += loss.item() * len(rows)
-            losses.append(total / len(d))
+            history.losses.append(total / len(taught))
+            if len(validating):
+                loss, accuracy = _validated(model, validating, loss_of)
+                history.validation.append(loss)
+                history.accuracy.append(accuracy)
+                shown.set_postfix(validation=f"{loss:.3f}", accuracy=f"{accuracy:.2f}")
+            if kept is None or history.kept == epoch:
+                kept = _copy(model)
             if checkpoint is not None:
-                save(checkpoint, model, schedule, losses, data, optimizer)
+                save(checkpoint, model, schedule, history, kept, data, optimizer)
         torch.set_num_threads(threads)
+    model.load_state_dict(kept)
     model.eval()
-    return model, losses
+    return model, history
 
 
 def slim(path: Path, to: Path) -> Path:
-    """Write the checkpoint at ``path`` to ``to`` with what choosing needs alone (the
+    """Write the checkpoint at ``path`` to ``to`` with what choosing needs alone (the kept
     model, its vocabulary, how it was trained), atomically."""
     state = torch.load(path, weights_only=True)
-    kept = {k: state[k] for k in ("model", "vocabulary", "schedule", "losses")}
+    kept = {k: state[k] for k in ("vocabulary", "schedule", "losses", "validation", "accuracy")}
+    kept["model"] = state["kept"]
     with atomic_path(to) as tmp:
         torch.save(kept, tmp)
     return Path(to)
@@ -148,7 +234,13 @@ def load(path: Path) -> Chooser:
     state = torch.load(path, weights_only=True)
     known = state["vocabulary"]
     model = Chooser(None if known is None else Vocabulary(tuple(known)))
-    model.load_state_dict(state["model"])
+    try:
+        model.load_state_dict(state.get("kept", state["model"]))
+    except RuntimeError as exc:
+        raise ValueError(
+            f"the grounding checkpoint at {path} does not fit this version's network; "
+            "train one with `instructmove train-grounding`"
+        ) from exc
     return model.eval()
 
 
