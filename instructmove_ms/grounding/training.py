@@ -146,16 +146,21 @@ def _copy(model: Chooser) -> dict:
 
 
 @torch.no_grad()
-def _validated(model: Chooser, d: Decisions, loss_of, size: int = 256) -> tuple[float, float]:
-    """``model``'s mean loss and choice accuracy on ``d``."""
+def _scored(model: Chooser, d: Decisions, rows: np.ndarray, size: int = 256):
+    """(scores, answers) of decisions ``rows`` of ``d``, a chunk of ``size`` at a time."""
     model.eval()
+    for chunk in _chunks(rows, size):
+        inputs, answers = batch(d, chunk, model.vocabulary)
+        yield model(inputs), answers
+
+
+def _validated(model: Chooser, d: Decisions, rows: np.ndarray, loss_of) -> tuple[float, float]:
+    """``model``'s mean loss and choice accuracy on decisions ``rows`` of ``d``."""
     loss = correct = 0.0
-    for rows in _chunks(np.arange(len(d)), size):
-        inputs, answers = batch(d, rows, model.vocabulary)
-        scores = model(inputs)
-        loss += loss_of(scores, answers).item() * len(rows)
+    for scores, answers in _scored(model, d, rows):
+        loss += loss_of(scores, answers).item() * len(answers)
         correct += (scores.argmax(dim=1) == answers).sum().item()
-    return loss / len(d), correct / len(d)
+    return loss / len(rows), correct / len(rows)
 
 
 def fit(
@@ -171,12 +176,11 @@ def fit(
         raise ValueError("no decisions to train on")
     schedule = schedule or Schedule()
     train, held = schedule.split(d)
-    taught, validating = d.take(train), d.take(held)
     threads = torch.get_num_threads()
     with threadpool_limits(schedule.threads), torch.random.fork_rng():
         torch.set_num_threads(schedule.threads)
         torch.manual_seed(schedule.seed)
-        words = list(map(str, taught.instruction))
+        words = list(map(str, d.instruction[train]))
         model = Chooser(Vocabulary.of(words) if schedule.text else None)
         optimizer = torch.optim.AdamW(
             model.parameters(), lr=schedule.learning_rate, weight_decay=schedule.weight_decay
@@ -189,10 +193,10 @@ def fit(
         for epoch in shown:
             model.train()
             rng = np.random.default_rng([schedule.seed, epoch])
-            order = rng.permutation(len(taught))
+            order = train[rng.permutation(len(train))]
             total = 0.0
             for rows in _chunks(order, schedule.batch):
-                inputs, answers = batch(taught, rows, model.vocabulary)
+                inputs, answers = batch(d, rows, model.vocabulary)
                 if schedule.mirror:
                     inputs = _mirrored(inputs, rng)
                 loss = loss_of(model(inputs), answers)
@@ -200,9 +204,9 @@ def fit(
                 loss.backward()
                 optimizer.step()
                 total += loss.item() * len(rows)
-            history.losses.append(total / len(taught))
-            if len(validating):
-                loss, accuracy = _validated(model, validating, loss_of)
+            history.losses.append(total / len(train))
+            if len(held):
+                loss, accuracy = _validated(model, d, held, loss_of)
                 history.validation.append(loss)
                 history.accuracy.append(accuracy)
                 shown.set_postfix(validation=f"{loss:.3f}", accuracy=f"{accuracy:.2f}")
@@ -244,12 +248,7 @@ def load(path: Path) -> Chooser:
     return model.eval()
 
 
-@torch.no_grad()
 def choose(model: Chooser, d: Decisions, size: int = 256) -> np.ndarray:
     """The option ``model`` scores highest in each decision of ``d``."""
-    model.eval()
-    picked = [
-        model(batch(d, rows, model.vocabulary)[0]).argmax(dim=1).numpy()
-        for rows in _chunks(np.arange(len(d)), size)
-    ]
+    picked = [s.argmax(dim=1).numpy() for s, _ in _scored(model, d, np.arange(len(d)), size)]
     return np.concatenate(picked) if picked else np.zeros(0, int)
