@@ -104,6 +104,12 @@ def contains(part: Part, points: np.ndarray) -> np.ndarray:
     return np.hypot(along, radial) < s[0]
 
 
+def _grip_height(top: float, height: float) -> float:
+    """Height of a grasp centre on a part (or section) whose top is at ``top`` and which is
+    ``height`` tall: ``FINGER_DEPTH`` below the top, or halfway down a lower one."""
+    return top - min(FINGER_DEPTH, height / 2)
+
+
 def _blocked(
     center: np.ndarray, top: float, z: float, axis: np.ndarray, width: float, others: list[Part]
 ) -> bool:
@@ -134,7 +140,7 @@ def grasp_affordances(inst: Instance, max_opening: float = 0.08) -> list[Grasp]:
     for part in solids:
         lo, hi = part.bounds()
         top, height = float(hi[2]), float(hi[2] - lo[2])
-        z = top - min(FINGER_DEPTH, height / 2)
+        z = _grip_height(top, height)
         if z < MIN_HEIGHT - EPS or height < MIN_PART_HEIGHT - EPS:
             continue
         others = [p for p in solids if p is not part]
@@ -170,15 +176,20 @@ def _grasp(center: np.ndarray, axis: np.ndarray, width: float) -> Grasp:
 
 
 def enveloping_grasps(inst: Instance, max_opening: float = 0.08) -> list[Grasp]:
-    """A container's grasps around its whole section just below its top, along its x and
-    y axes: a cup's ring of wall pieces held from outside rather than by one piece of its
-    rim (which a heavy cup turns out of)."""
-    if not inst.is_container:
-        return []
+    """A container's grasps around its whole section just below its top (``section_grasps``):
+    a cup's ring of wall pieces held from outside rather than by one piece of its rim (which a
+    heavy cup turns out of)."""
+    return section_grasps(inst, max_opening) if inst.is_container else []
+
+
+def section_grasps(inst: Instance, max_opening: float = 0.08) -> list[Grasp]:
+    """Grasps around the whole section of ``inst`` just below its top, along its x and y
+    axes, where two or more parts make that section: a container's walls, or parts lying
+    side by side (sticks in a pack) whose gaps a finger cannot enter."""
     solids = [p for p in inst.parts if not p.visual_only]
     lo, hi = union_bounds(solids)
     top = float(hi[2])
-    z = top - min(FINGER_DEPTH, float(hi[2] - lo[2]) / 2)
+    z = _grip_height(top, float(hi[2] - lo[2]))
     section = [p for p in solids if p.bounds()[0][2] - EPS <= z <= p.bounds()[1][2] + EPS]
     if len(section) < 2 or z < MIN_HEIGHT - EPS:
         return []
@@ -188,5 +199,33 @@ def enveloping_grasps(inst: Instance, max_opening: float = 0.08) -> list[Grasp]:
     for k in (0, 1):
         axis, width = np.eye(3)[k], float(shi[k] - slo[k])
         if _fits(width, max_opening) and not _blocked(center, top, z, axis, width, solids):
+            grasps.append(_grasp(center, axis, width))
+    return grasps
+
+
+def rim_grasps(inst: Instance, max_opening: float = 0.08) -> list[Grasp]:
+    """A container's grasps across one piece of its wall at the top, closing towards the
+    middle (one finger inside, one outside): the hold that keeps a container too wide for
+    the hand from turning out of the fingers (a pinch along the rim holds it only by the
+    friction of its pads against the turn)."""
+    if not inst.is_container:
+        return []
+    solids = [p for p in inst.parts if not p.visual_only]
+    lo, hi = union_bounds(solids)
+    middle = 0.5 * (lo[:2] + hi[:2])
+    grasps = []
+    for part in solids:
+        plo, phi = part.bounds()
+        top, height = float(phi[2]), float(phi[2] - plo[2])
+        z = _grip_height(top, height)
+        if top < float(hi[2]) - FINGER_DEPTH or z < MIN_HEIGHT - EPS:
+            continue  # not a wall reaching the rim
+        center = section_center(part, z)
+        inward = middle - center[:2]
+        if float(np.linalg.norm(inward)) < FINGER_HALF_WIDTH:
+            continue  # a part at the middle (a handle's post, a divider)
+        axis, width = max(_horizontal_widths(part), key=lambda aw: abs(float(aw[0][:2] @ inward)))
+        others = [p for p in solids if p is not part]
+        if _fits(width, max_opening) and not _blocked(center, top, z, axis, width, others):
             grasps.append(_grasp(center, axis, width))
     return grasps

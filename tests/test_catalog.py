@@ -151,6 +151,45 @@ def test_a_cup_that_fits_the_hand_is_also_held_around_its_whole_rim():
     assert not enveloping_grasps(load_snapshot().of_category("apple")[0], max_opening=0.1)
 
 
+def test_a_container_too_wide_for_the_hand_is_held_across_its_rim():
+    """A metal pencil holder 8 cm across: each rim grasp closes towards the middle on one
+    wall piece (a finger inside, one outside), not along the rim."""
+    from instructmove_ms.assets.affordances import enveloping_grasps, rim_grasps
+
+    catalog = load_snapshot()
+    holder = catalog["0076e554-bbc0-525b-a396-d030d4a76400"]
+    assert holder.category == "pen_holder" and not enveloping_grasps(holder, max_opening=0.08)
+    lo, hi = holder.bounds
+    middle = 0.5 * (lo + hi)[:2]
+    top = max(p.bounds()[1][2] for p in holder.parts if not p.visual_only)  # pens stick out
+    rims = rim_grasps(holder, max_opening=0.08)
+    assert len(rims) >= 8
+    for g in rims:
+        inward = middle - np.asarray(g.center[:2])
+        assert np.linalg.norm(inward) > 0.03  # at the wall, not the middle
+        assert abs(np.dot(g.closing[:2], inward / np.linalg.norm(inward))) > 0.99
+        assert g.width < 0.005  # across the wall's thickness
+        assert top - 0.021 < g.center[2] < top  # just below the rim
+    assert not rim_grasps(catalog.of_category("apple")[0], max_opening=0.08)
+
+
+def test_sticks_lying_side_by_side_are_held_around_the_pack():
+    """String cheese: three sticks 7 mm and 1 mm apart, too close for a finger between; the
+    section grasp closes across all three."""
+    from instructmove_ms.assets.affordances import enveloping_grasps, section_grasps
+
+    pack = load_snapshot()["57068ba2-eb20-5c88-9dd5-927c82d0e61b"]
+    assert pack.category == "cheese_sticks" and not pack.is_container
+    assert not enveloping_grasps(pack, max_opening=0.1)
+    sticks = [p.bounds() for p in pack.parts if not p.visual_only]
+    across = [g for g in section_grasps(pack, max_opening=0.1) if abs(g.closing[0]) > 0.99]
+    assert len(across) == 1
+    lo = min(b[0][0] for b in sticks)
+    hi = max(b[1][0] for b in sticks)
+    assert across[0].width == pytest.approx(hi - lo)
+    assert lo < across[0].center[0] < hi
+
+
 def test_a_lid_standing_open_gives_a_bin_its_back_and_scenes_turn_it_from_the_robot():
     catalog = load_snapshot()
     assert [b.back for b in catalog.of_category("waste_bin")] == [math.pi] * 10  # hinge at -x

@@ -9,8 +9,9 @@ import torch
 
 from conftest import make_env
 from contacts import FORCE_LIMIT, collisions
-from instructmove_ms.assets.affordances import enveloping_grasps
+from instructmove_ms.assets.affordances import enveloping_grasps, section_grasps
 from instructmove_ms.demos import pick
+from instructmove_ms.heldout import load_set
 from instructmove_ms.planning import PlanningScene
 
 TASK = "PickCategory-InstructMove"
@@ -78,6 +79,25 @@ def test_planned_pick_lifts_target_and_touches_nothing_else(envs, robot, seed):
     assert bool(info["success"][0])
 
 
+def _target(env):
+    u = env.unwrapped
+    return u.catalog[u.episode.objects[u.episode.target].uuid]
+
+
+def _lifts_opened_around(env, around) -> None:
+    """Plans the pick and plays it: the hand opens wider than the narrowest of the target's
+    ``around(instance, max_opening)`` grasps, and the target rises, held, the robot pressing
+    on nothing else."""
+    actions = _plan(env)
+    assert not isinstance(actions, str), actions
+    rig = PlanningScene.from_env(env).rig(_moved_arm(env, actions))
+    narrowest = min(g.width for g in around(_target(env), rig.gripper.max_width))
+    assert actions[0, rig.gripper_slot] > narrowest
+    info, rise, worst = _checked_rollout(env, actions)
+    env.close()
+    assert bool(info["success"][0]) and rise > 0.05 and not worst, (rise, worst)
+
+
 def test_a_cup_on_a_saucer_is_held_around_its_rim():
     """PickAttribute seed 168: a 0.32 kg ceramic cup on its saucer. A finger at one wall piece
     lets it turn out; the hand opens wider than the cup and closes around it."""
@@ -85,14 +105,33 @@ def test_a_cup_on_a_saucer_is_held_around_its_rim():
         robot_uids="piperx", control_mode="pd_joint_pos", env_id="PickAttribute-InstructMove"
     )
     env.reset(seed=168)
-    u = env.unwrapped
-    cup = u.catalog[u.episode.objects[u.episode.target].uuid]
-    assert cup.category == "coffee_cup"
+    assert _target(env).category == "coffee_cup"
+    _lifts_opened_around(env, enveloping_grasps)
+
+
+def test_the_piperx_lifts_string_cheese_around_the_pack():
+    """Stored v8 episode (PickCategory, ``unseen_category``): three cheese sticks lying 7 mm
+    apart. A 26.5 mm PiperX finger beside the front stick lands on the next one; the hand
+    closes around the whole pack instead, and it rises."""
+    spec = next(
+        s for s in load_set(TASK, "piperx", "unseen_category", version=8) if s.seed == 1002000007
+    )
+    env = make_env(robot_uids="piperx", control_mode="pd_joint_pos", sampler=2)
+    env.reset(options={"episode": spec})
+    assert _target(env).category == "cheese_sticks"
+    _lifts_opened_around(env, section_grasps)
+
+
+def test_the_franka_lifts_a_metal_pencil_holder_by_its_rim():
+    """Symmetric sampler, PickAttribute seed 10: a 0.46 kg metal pencil holder 8 cm across,
+    wider than the Franka opens. Pinched along the rim it turned out of the fingers in every
+    rollout; closing across the wall, a finger inside, it rises."""
+    env = make_env(env_id="PickAttribute-InstructMove", control_mode="pd_joint_pos", sampler=2)
+    env.reset(seed=10)
+    holder = _target(env)
+    assert holder.category == "pen_holder" and holder.mass > 0.4
     actions = _plan(env)
     assert not isinstance(actions, str), actions
-    rig = PlanningScene.from_env(env).rig(_moved_arm(env, actions))
-    rim = min(g.width for g in enveloping_grasps(cup, rig.gripper.max_width))
-    assert actions[0, rig.gripper_slot] > rim  # opened around the whole cup
     info, rise, worst = _checked_rollout(env, actions)
     env.close()
     assert bool(info["success"][0]) and rise > 0.05 and not worst, (rise, worst)

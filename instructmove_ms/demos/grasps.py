@@ -11,7 +11,12 @@ from itertools import product
 import numpy as np
 import sapien
 
-from instructmove_ms.assets.affordances import enveloping_grasps, grasp_affordances
+from instructmove_ms.assets.affordances import (
+    enveloping_grasps,
+    grasp_affordances,
+    rim_grasps,
+    section_grasps,
+)
 from instructmove_ms.planning import CollisionWorld, PlanningScene, Rig
 from instructmove_ms.planning.scene import TABLE
 
@@ -30,6 +35,9 @@ OFF_CENTRE_COST = 20.0
 YAWS = np.deg2rad([30.0, -30.0])
 YAW_COST = 2.0  # cost (rad of joint motion) per radian of turn
 FINGER_CLEARANCE = 0.015  # metres between each open finger and the object at the grasp
+#: Grasp kinds tried in this order at every lean: around a container's whole section, across
+#: its rim (a container too wide for the hand), the others (``GraspFrame.tier``).
+TIERS = ("enveloping", "rim", "part")
 
 
 @dataclass(frozen=True)
@@ -37,24 +45,27 @@ class GraspFrame:
     """A grasp affordance of the target in the robot's base frame: ``pose`` has its y axis
     along the closing axis and its z axis along the approach; ``width`` is the object's
     width between the fingers, ``cost`` its ranking cost besides joint motion (off the
-    box's middle, turned); ``enveloping``: around a container's whole section."""
+    box's middle, turned); ``tier``: which go first (``TIERS``)."""
 
     pose: sapien.Pose
     width: float
     cost: float
-    enveloping: bool = False
+    tier: int = 2
 
 
 @dataclass(frozen=True)
 class Candidate:
     """A grasp reachable from the rig's start: the TCP at the grasp (base frame), the
     object's width between the fingers, a collision-free configuration ``q_pre`` at the
-    pre-grasp and its cost (summed joint motion from the start plus the frame's cost)."""
+    pre-grasp and its cost (summed joint motion from the start plus the frame's cost);
+    ``lands``: the open hand at the grasp touches the target, a finger on a part beside the
+    one it should close on (a thick finger between sticks lying close)."""
 
     tcp: sapien.Pose
     width: float
     q_pre: np.ndarray
     cost: float
+    lands: bool = False
 
 
 def box_corners(lo, hi) -> np.ndarray:
@@ -70,16 +81,20 @@ def box_top(pose: sapien.Pose, lo: np.ndarray, hi: np.ndarray) -> float:
 
 
 def grasp_frames(scene: PlanningScene, max_width: float) -> list[GraspFrame]:
-    """The target's grasp affordances for fingers opening ``max_width``, each with both
-    closing-axis signs, as given and turned by ``YAWS`` (the width across a turned bar
-    grows as 1 / cos)."""
+    """The target's grasp affordances for fingers opening ``max_width``, a container's rim
+    grasps and, for an object that is no container, its grasps around the whole section
+    (parts lying side by side), each with both closing-axis signs, as given and turned by
+    ``YAWS`` (the width across a turned bar grows as 1 / cos), with their ``TIERS``."""
     inst = scene.objects[scene.target].instance
     obj, lo, hi = scene.box(scene.target)
     rot = obj.to_transformation_matrix()[:3, :3]
     middle = (obj * sapien.Pose(0.5 * (lo + hi))).p
     whole = set(enveloping_grasps(inst, max_opening=max_width))
+    rim = rim_grasps(inst, max_opening=max_width)
+    around = [] if inst.is_container else section_grasps(inst, max_opening=max_width)
     frames = []
-    for grasp in grasp_affordances(inst, max_opening=max_width):
+    for grasp in dict.fromkeys((*grasp_affordances(inst, max_opening=max_width), *rim, *around)):
+        tier = 0 if grasp in whole else 1 if grasp in rim else 2
         z = rot @ np.asarray(grasp.approach)
         center = (obj * sapien.Pose(grasp.center)).p
         offset = OFF_CENTRE_COST * float(np.linalg.norm((center - middle)[:2]))
@@ -95,7 +110,7 @@ def grasp_frames(scene: PlanningScene, max_width: float) -> list[GraspFrame]:
                 matrix[:3, :3] = np.stack([np.cross(y, z), y, z], axis=1)
                 matrix[:3, 3] = center
                 cost = offset + YAW_COST * abs(yaw)
-                frames.append(GraspFrame(sapien.Pose(matrix), width, cost, grasp in whole))
+                frames.append(GraspFrame(sapien.Pose(matrix), width, cost, tier))
     return frames
 
 
@@ -161,6 +176,16 @@ def descends(
     return accept
 
 
+def lands_on(
+    rig: Rig, world: CollisionWorld, tcp: sapien.Pose, q_pre: np.ndarray, name: str
+) -> bool:
+    """Whether the open hand at ``tcp`` (IK seeded at the pre-grasp ``q_pre``) touches
+    ``name``: the fingers open a clearance wider than the part they close on, so a touch is
+    a finger on another part of the object."""
+    down = rig.kin.ik(tcp, seeds=[q_pre], num_random=0)
+    return down is not None and any(name in pair for pair in world.contacts(down))
+
+
 def opening(width: float) -> float:
     """How far apart the fingers open to grasp an object ``width`` metres across."""
     return width + 2.0 * FINGER_CLEARANCE
@@ -172,17 +197,19 @@ def candidates(scene: PlanningScene, rig: Rig) -> Iterator[Candidate]:
     target by ``PRE_CLEARANCE``) has a collision-free IK solution from which the hand,
     its fingers at the grasp's ``opening``, reaches the grasp touching nothing but the
     table and the target (a 7-joint arm's elbow kept off a tall neighbour, a finger off a
-    neighbour lying close); within a lean, the cheapest first. A container's enveloping
-    grasps go first at every lean, then the others. Each lean is solved only when asked
-    for."""
+    neighbour lying close); within a lean, the cheapest first. The ``TIERS`` go in turn at
+    every lean; those whose hand lands beside the target's part (``lands_on``) go after all
+    of them, in the same order. Each lean is solved only when asked for."""
     frames = grasp_frames(scene, rig.gripper.max_width)
     worlds: dict[float, CollisionWorld] = {}
     clear = box_top(*scene.box(scene.target)) + PRE_CLEARANCE
     start = rig.start
     below = below_hand(scene)
-    for tier, lean in product((True, False), LEANS):
+    name = scene.objects[scene.target].name
+    landing: list[Candidate] = []
+    for tier, lean in product(range(len(TIERS)), LEANS):
         found = []
-        for frame in (f for f in frames if f.enveloping == tier):
+        for frame in (f for f in frames if f.tier == tier):
             width = round(opening(frame.width), 3)
             if width not in worlds:
                 worlds[width] = scene.world(rig.opened(width).kin)
@@ -196,6 +223,10 @@ def candidates(scene: PlanningScene, rig: Rig) -> Iterator[Candidate]:
                     q_pre = rig.kin.ik(pre, seeds=[start], accept=accept)
                     if q_pre is not None:
                         cost = float(np.abs(q_pre - start).sum()) + frame.cost
-                        found.append(Candidate(tcp, frame.width, q_pre, cost))
+                        lands = lands_on(rig, worlds[width], tcp, q_pre, name)
+                        found.append(Candidate(tcp, frame.width, q_pre, cost, lands))
                         break
-        yield from sorted(found, key=lambda c: c.cost)
+        found.sort(key=lambda c: c.cost)
+        yield from (c for c in found if not c.lands)
+        landing += (c for c in found if c.lands)
+    yield from landing
