@@ -12,7 +12,8 @@ import pytest
 from instructmove_ms import audit
 from instructmove_ms.assets import load_snapshot
 from instructmove_ms.audit import learned
-from instructmove_ms.audit.choices import choices_of
+from instructmove_ms.audit.choices import by_decision, choices_of
+from instructmove_ms.audit.noise import yardstick
 from instructmove_ms.audit.scenes import choices, stored_specs
 from instructmove_ms.cli import main
 from instructmove_ms.heldout import load_set
@@ -61,6 +62,23 @@ def test_no_rule_fails_where_the_answer_is_drawn_blind(v7):
     assert not _failed(cells)
     worst = max(c.z for c in cells if c.gated)
     assert worst < 3.0
+
+
+def test_the_noise_yardstick_tells_v7s_shortcuts_from_v8s_noise(v7):
+    """Answers redrawn by a fair die: v7's largest pooled rule excess lies past every draw
+    where a shortcut was found (not the receptacle, which held); v8's lies among the draws,
+    as does a set whose answers were themselves drawn blind."""
+    for (_, kind), group in by_decision(v7).items():
+        found = yardstick(group, draws=200)
+        assert found.scenes > 300 and found.median > 0.0
+        if kind == "object":
+            assert found.share == 0.0 and found.observed > found.p95, found
+    for group in by_decision(choices(stored_specs(8))).values():
+        assert yardstick(group, draws=200).share > 0.05
+    draw = random.Random(11)
+    spatial = [c for c in v7 if c.family == "pick_spatial"]
+    blind = yardstick(_answered(spatial, lambda c: draw.randrange(len(c.options))), draws=200)
+    assert blind.share > 0.05 and blind.observed < blind.p95 + 0.02
 
 
 def test_an_adversary_sees_neither_roles_nor_instruction():
@@ -121,6 +139,11 @@ def test_cli_audit_writes_the_report_and_fails_sets_v7(tmp_path):
     assert ("pick_category", "unseen_instance", "novelty") in failed
     assert any(c["adversary"] == "trees, trained" for c in summary["cells"])
     assert "**failed**" in (out / "report.md").read_text()
+    assert [(n["family"], n["kind"]) for n in summary["noise"]][-2:] == [
+        ("place_a2b", "object"),
+        ("place_a2b", "receptacle"),
+    ]
+    assert "## Noise at this size" in (out / "report.md").read_text()
     plots = sorted(p.name for p in out.glob("*.png"))
     assert plots == [
         "pick_attribute.png",

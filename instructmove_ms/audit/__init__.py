@@ -18,6 +18,7 @@ from ..tasks import TASKS
 from ..validation import check_choice
 from . import report, rules
 from .choices import Choice, by_decision
+from .noise import yardstick
 from .scenes import choices, fresh_choices, sampler_of, stored_specs, training_choices
 from .stats import Cell, cells
 
@@ -115,6 +116,7 @@ def run(
         training += training_choices(env_id, training_scenes, sampler, progress)
         fresh += fresh_choices(env_id, fresh_scenes, sampler, progress)
     found, on_training = judge(stored, training, fresh=fresh)
+    noises = [yardstick(group) for group in by_decision(stored).values()]
     about: dict = {}
     if pixel_scenes:
         from . import pixels  # torch and the renderer, only when asked
@@ -132,4 +134,4 @@ def run(
         "rendered training scenes per family and robot (pixel adversary)": pixel_scenes,
         **about,
     }
-    return found, report.write(out, about, found, on_training)
+    return found, report.write(out, about, found, on_training, noises)

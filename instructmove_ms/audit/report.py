@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from collections import defaultdict
+from collections.abc import Sequence
 from pathlib import Path
 
 import matplotlib
@@ -11,6 +12,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 from ..files import atomic_path, write_json, write_text  # noqa: E402
+from .noise import Noise  # noqa: E402
 from .stats import MAX_Z, POOLED, Cell  # noqa: E402
 
 
@@ -22,12 +24,15 @@ def _label(c: Cell) -> str:
 SOURCES = {"stored": "stored sets", "fresh": "fresh scenes of the sampler"}
 
 
-def summary(about: dict, cells: list[Cell], training: list[Cell]) -> dict:
+def summary(
+    about: dict, cells: list[Cell], training: list[Cell], noises: Sequence[Noise] = ()
+) -> dict:
     return {
         **about,
         "failed": [c.to_dict() for c in cells if c.failed],
         "cells": [c.to_dict() for c in cells],
         "training_scenes": [c.to_dict() for c in training],
+        "noise": [n.to_dict() for n in noises],
     }
 
 
@@ -39,8 +44,34 @@ def _row(c: Cell) -> str:
     )
 
 
-def markdown(about: dict, cells: list[Cell], training: list[Cell], top: int = 8) -> str:
-    """The report: what was judged, what failed, and each family's strongest adversaries."""
+def _noise(noises: Sequence[Noise]) -> list[str]:
+    if not noises:
+        return []
+    draws = noises[0].draws
+    return [
+        "## Noise at this size",
+        "",
+        "The rules' largest pooled excess over chance on the stored answers, against the same "
+        f"on {draws:,} sets of the same scenes whose answers a fair die redrew: what noise "
+        "alone shows at this size.",
+        "",
+        "| family | scenes | largest excess | redrawn: median | redrawn: 95th percentile "
+        "| redrawn at least as large |",
+        "|---|---|---|---|---|---|",
+        *(
+            f"| {n.family if n.kind == 'object' else f'{n.family} ({n.kind})'} | {n.scenes} "
+            f"| {n.observed:+.3f} | {n.median:+.3f} | {n.p95:+.3f} | {n.share:.0%} |"
+            for n in noises
+        ),
+        "",
+    ]
+
+
+def markdown(
+    about: dict, cells: list[Cell], training: list[Cell], noises: Sequence[Noise] = (), top: int = 8
+) -> str:
+    """The report: what was judged, what failed, each family's strongest adversaries and the
+    noise yardstick of the stored sets (``noise``)."""
     failed = [c for c in cells if c.failed]
     lines = [
         "# Language-blind audit",
@@ -78,6 +109,7 @@ def markdown(about: dict, cells: list[Cell], training: list[Cell], top: int = 8)
         if robots:
             lines += ["Past 3 standard errors on one robot (not gated):", "", *header]
             lines += [*map(_row, robots), ""]
+    lines += _noise(noises)
     if training:
         lines += [
             "## Rules on training scenes",
@@ -119,12 +151,18 @@ def plot(family: str, cells: list[Cell], path: Path) -> Path:
     return path
 
 
-def write(out: Path, about: dict, cells: list[Cell], training: list[Cell]) -> list[Path]:
+def write(
+    out: Path,
+    about: dict,
+    cells: list[Cell],
+    training: list[Cell],
+    noises: Sequence[Noise] = (),
+) -> list[Path]:
     """Write the summary, the report and the plots under ``out``."""
     out.mkdir(parents=True, exist_ok=True)
     paths = [
-        write_json(out / "summary.json", summary(about, cells, training), indent=1),
-        write_text(out / "report.md", markdown(about, cells, training)),
+        write_json(out / "summary.json", summary(about, cells, training, noises), indent=1),
+        write_text(out / "report.md", markdown(about, cells, training, noises)),
     ]
     by_family: dict[str, list[Cell]] = defaultdict(list)
     plotted = "stored" if any(c.source == "stored" for c in cells) else "fresh"
