@@ -35,9 +35,10 @@ OFF_CENTRE_COST = 20.0
 YAWS = np.deg2rad([30.0, -30.0])
 YAW_COST = 2.0  # cost (rad of joint motion) per radian of turn
 FINGER_CLEARANCE = 0.015  # metres between each open finger and the object at the grasp
-#: Grasp kinds tried in this order at every lean: around a container's whole section, across
-#: its rim (a container too wide for the hand), the others (``GraspFrame.tier``).
-TIERS = ("enveloping", "rim", "part")
+#: Grasp kinds tried in turn, each at every lean: around a container's whole section, across
+#: its rim (a container too wide for the hand), on one part, around the whole section of
+#: parts lying side by side (``GraspFrame.tier``).
+TIERS = ("enveloping", "rim", "part", "section")
 
 
 @dataclass(frozen=True)
@@ -91,10 +92,11 @@ def grasp_frames(scene: PlanningScene, max_width: float) -> list[GraspFrame]:
     middle = (obj * sapien.Pose(0.5 * (lo + hi))).p
     whole = set(enveloping_grasps(inst, max_opening=max_width))
     rim = rim_grasps(inst, max_opening=max_width)
+    parts = grasp_affordances(inst, max_opening=max_width)
     around = [] if inst.is_container else section_grasps(inst, max_opening=max_width)
     frames = []
-    for grasp in dict.fromkeys((*grasp_affordances(inst, max_opening=max_width), *rim, *around)):
-        tier = 0 if grasp in whole else 1 if grasp in rim else 2
+    for grasp in dict.fromkeys((*parts, *rim, *around)):
+        tier = 0 if grasp in whole else 1 if grasp in rim else 2 if grasp in parts else 3
         z = rot @ np.asarray(grasp.approach)
         center = (obj * sapien.Pose(grasp.center)).p
         offset = OFF_CENTRE_COST * float(np.linalg.norm((center - middle)[:2]))
