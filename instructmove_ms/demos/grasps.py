@@ -51,7 +51,7 @@ class GraspFrame:
     pose: sapien.Pose
     width: float
     cost: float
-    tier: int = 2
+    tier: int
 
 
 @dataclass(frozen=True)
@@ -66,7 +66,7 @@ class Candidate:
     width: float
     q_pre: np.ndarray
     cost: float
-    lands: bool = False
+    lands: bool
 
 
 def box_corners(lo, hi) -> np.ndarray:
