@@ -4,7 +4,7 @@ reach them upright, ranked by IK feasibility and joint-space cost."""
 
 from __future__ import annotations
 
-from collections.abc import Callable, Iterator
+from collections.abc import Iterator
 from dataclasses import dataclass
 from itertools import product
 
@@ -163,29 +163,32 @@ def touches_only(contacts: set[tuple[str, str]], allowed: set[str]) -> bool:
     return all(allowed.intersection(pair) for pair in contacts)
 
 
-def descends(
-    rig: Rig, world: CollisionWorld, tcp: sapien.Pose, allowed: set[str]
-) -> Callable[[np.ndarray], bool]:
+class Descent:
     """IK acceptance for a pre-grasp: collision-free, and the hand reaches ``tcp`` from it
-    (IK seeded there) touching nothing outside ``allowed``."""
+    (IK seeded there) touching nothing outside ``allowed``. Keeps what the hand at ``tcp``
+    touches from each configuration it accepted, for ``lands_on``."""
 
-    def accept(q: np.ndarray) -> bool:
-        if world.in_collision(q):
+    def __init__(self, rig: Rig, world: CollisionWorld, tcp: sapien.Pose, allowed: set[str]):
+        self.rig, self.world, self.tcp, self.allowed = rig, world, tcp, allowed
+        self.touched: dict[bytes, set[tuple[str, str]]] = {}
+
+    def __call__(self, q: np.ndarray) -> bool:
+        if self.world.in_collision(q):
             return False
-        down = rig.kin.ik(tcp, seeds=[q], num_random=0)
-        return down is not None and touches_only(world.contacts(down), allowed)
+        down = self.rig.kin.ik(self.tcp, seeds=[q], num_random=0)
+        if down is None:
+            return False
+        contacts = self.world.contacts(down)
+        if not touches_only(contacts, self.allowed):
+            return False
+        self.touched[q.tobytes()] = contacts
+        return True
 
-    return accept
-
-
-def lands_on(
-    rig: Rig, world: CollisionWorld, tcp: sapien.Pose, q_pre: np.ndarray, name: str
-) -> bool:
-    """Whether the open hand at ``tcp`` (IK seeded at the pre-grasp ``q_pre``) touches
-    ``name``: the fingers open a clearance wider than the part they close on, so a touch is
-    a finger on another part of the object."""
-    down = rig.kin.ik(tcp, seeds=[q_pre], num_random=0)
-    return down is not None and any(name in pair for pair in world.contacts(down))
+    def lands_on(self, q_pre: np.ndarray, name: str) -> bool:
+        """Whether the open hand at ``tcp`` from the accepted pre-grasp ``q_pre`` touches
+        ``name``: the fingers open a clearance wider than the part they close on, so a touch
+        is a finger on another part of the object."""
+        return any(name in pair for pair in self.touched[q_pre.tobytes()])
 
 
 def opening(width: float) -> float:
@@ -200,7 +203,7 @@ def candidates(scene: PlanningScene, rig: Rig) -> Iterator[Candidate]:
     its fingers at the grasp's ``opening``, reaches the grasp touching nothing but the
     table and the target (a 7-joint arm's elbow kept off a tall neighbour, a finger off a
     neighbour lying close); within a lean, the cheapest first. The ``TIERS`` go in turn at
-    every lean; those whose hand lands beside the target's part (``lands_on``) go after all
+    every lean; those whose hand lands beside the target's part (``Descent.lands_on``) go after all
     of them, in the same order. Each lean is solved only when asked for."""
     frames = grasp_frames(scene, rig.gripper.max_width)
     worlds: dict[float, CollisionWorld] = {}
@@ -221,11 +224,11 @@ def candidates(scene: PlanningScene, rig: Rig) -> Iterator[Candidate]:
                     pre = back_off(tcp, distance)
                     if back_off(pre, -rig.tip_depth).p[2] < clear:
                         break
-                    accept = descends(rig, worlds[width], tcp, below)
-                    q_pre = rig.kin.ik(pre, seeds=[start], accept=accept)
+                    descent = Descent(rig, worlds[width], tcp, below)
+                    q_pre = rig.kin.ik(pre, seeds=[start], accept=descent)
                     if q_pre is not None:
                         cost = float(np.abs(q_pre - start).sum()) + frame.cost
-                        lands = lands_on(rig, worlds[width], tcp, q_pre, name)
+                        lands = descent.lands_on(q_pre, name)
                         found.append(Candidate(tcp, frame.width, q_pre, cost, lands))
                         break
         found.sort(key=lambda c: c.cost)
