@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from collections import defaultdict
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import asdict, dataclass
 
 import numpy as np
 
@@ -42,16 +42,7 @@ class Noise:
     share: float
 
     def to_dict(self) -> dict:
-        return {
-            "family": self.family,
-            "kind": self.kind,
-            "scenes": self.scenes,
-            "draws": self.draws,
-            "observed": round(self.observed, 4),
-            "median": round(self.median, 4),
-            "p95": round(self.p95, 4),
-            "share": round(self.share, 4),
-        }
+        return {k: round(v, 4) if isinstance(v, float) else v for k, v in asdict(self).items()}
 
 
 def _pick_scores(group: Sequence[Choice]) -> np.ndarray:
